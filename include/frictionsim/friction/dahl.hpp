@@ -1,0 +1,47 @@
+// Dahl friction, paper 000 eq 9 in Dahl's original sign-preserving form (Dahl 1968):
+//   dz/dt = v_r * sgn(b) |b|^alpha,  b = 1 - (k_t / (mu N)) sgn(v_r) z,   F = k_t z.
+// For alpha = 1 (the paper's choice) this is eq 9 exactly. The right-hand side has a kink at v_r = 0: the rig
+// locates it as an event and `branch` (= sgn v_r between events) selects the side.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "../detail/validate.hpp"
+#include "law.hpp"
+
+namespace frictionsim {
+
+class Dahl {
+public:
+    static constexpr const char* name = "Dahl";
+    static constexpr bool has_stick = false;
+    static constexpr bool kink_at_zero_velocity = true;
+    static constexpr std::size_t state_count = 1;
+    static constexpr std::array<const char*, 1> state_names{"dahl_deflection"};  ///< z, m
+
+    /// mu (dimensionless), k_t (N/m), alpha >= 0 (dimensionless).
+    Dahl(double friction_coefficient, double tangential_stiffness, double exponent = 1.0)
+        : mu_(detail::require_positive(name, "friction_coefficient", friction_coefficient)),
+          k_t_(detail::require_positive(name, "tangential_stiffness", tangential_stiffness)),
+          alpha_(detail::require_non_negative(name, "exponent", exponent)) {}
+
+    double friction_coefficient() const { return mu_; }
+    double tangential_stiffness() const { return k_t_; }
+    double exponent() const { return alpha_; }
+
+    double force(double /*v_r*/, double /*normal_force*/, const double* z, int /*branch*/) const {
+        return k_t_ * z[0];
+    }
+    void state_derivative(double v_r, double normal_force, const double* z, int branch, double* dz) const {
+        const double b = 1.0 - k_t_ / (mu_ * normal_force) * branch * z[0];
+        const double shaped = alpha_ == 1.0 ? b : std::copysign(std::pow(std::abs(b), alpha_), b);
+        dz[0] = v_r * shaped;
+    }
+
+private:
+    double mu_, k_t_, alpha_;
+};
+
+}  // namespace frictionsim

@@ -1,0 +1,64 @@
+// LuGre friction (Canudas de Wit, Olsson, Astrom & Lischinsky 1995, eqs 1-3):
+//   dz/dt = v - sigma0 |v| z / g(v),  g(v) = Fc + (Fs - Fc) exp(-(v/vs)^2),
+//   F = sigma0 z + sigma1 dz/dt + sigma2 v,  with Fc = mu_c N and Fs = mu_s N.
+// Its right-hand side is Lipschitz in v (|v| z), so no event is needed at v = 0.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "../detail/validate.hpp"
+#include "law.hpp"
+
+namespace frictionsim {
+
+class LuGre {
+public:
+    static constexpr const char* name = "LuGre";
+    static constexpr bool has_stick = false;
+    static constexpr bool kink_at_zero_velocity = false;
+    static constexpr std::size_t state_count = 1;
+    static constexpr std::array<const char*, 1> state_names{"bristle_deflection"};  ///< z, m
+
+    struct Params {
+        double coulomb_coefficient = 1.0;   ///< mu_c: Fc = mu_c N
+        double static_coefficient = 1.5;    ///< mu_s >= mu_c: Fs = mu_s N
+        double stribeck_velocity = 1e-3;    ///< v_s, m/s
+        double bristle_stiffness = 1e5;     ///< sigma0, N/m
+        double bristle_damping = 316.2277660168379;  ///< sigma1, N s/m (sqrt(1e5) in Canudas de Wit 1995)
+        double viscous_damping = 0.4;       ///< sigma2, N s/m
+    };
+
+    explicit LuGre(const Params& p) : p_(p) {
+        detail::require_positive(name, "coulomb_coefficient", p.coulomb_coefficient);
+        detail::require_at_least(name, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
+                                 ">= coulomb_coefficient and finite");
+        detail::require_positive(name, "stribeck_velocity", p.stribeck_velocity);
+        detail::require_positive(name, "bristle_stiffness", p.bristle_stiffness);
+        detail::require_non_negative(name, "bristle_damping", p.bristle_damping);
+        detail::require_non_negative(name, "viscous_damping", p.viscous_damping);
+    }
+
+    const Params& params() const { return p_; }
+
+    /// Steady-state sliding level g(v) (N) at normal force N.
+    double stribeck_level(double v_r, double normal_force) const {
+        const double r = v_r / p_.stribeck_velocity;
+        return normal_force *
+               (p_.coulomb_coefficient + (p_.static_coefficient - p_.coulomb_coefficient) * std::exp(-r * r));
+    }
+    void state_derivative(double v_r, double normal_force, const double* z, int /*branch*/, double* dz) const {
+        dz[0] = v_r - p_.bristle_stiffness * std::abs(v_r) * z[0] / stribeck_level(v_r, normal_force);
+    }
+    double force(double v_r, double normal_force, const double* z, int branch) const {
+        double dz = 0.0;
+        state_derivative(v_r, normal_force, z, branch, &dz);
+        return p_.bristle_stiffness * z[0] + p_.bristle_damping * dz + p_.viscous_damping * v_r;
+    }
+
+private:
+    Params p_;
+};
+
+}  // namespace frictionsim

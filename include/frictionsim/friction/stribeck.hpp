@@ -1,0 +1,53 @@
+// Stribeck friction: F = sgn(v) [Fc + (Fs - Fc) exp(-|v/vs|^delta)] + sigma_v v with Fc = mu_c N and
+// Fs = mu_s N (Olsson et al. 1998, eq 5). Stick is exact (switch model) unless a Karnopp band is given:
+// then |v_r| < band counts as stick and the friction force saturates the force needed to stick (Karnopp 1985).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "../detail/validate.hpp"
+#include "law.hpp"
+
+namespace frictionsim {
+
+class Stribeck {
+public:
+    static constexpr const char* name = "Stribeck";
+    static constexpr bool has_stick = true;
+    static constexpr std::size_t state_count = 0;
+
+    struct Params {
+        double coulomb_coefficient = 0.3;   ///< mu_c, kinetic level at high speed
+        double static_coefficient = 0.4;    ///< mu_s >= mu_c, breakaway level
+        double stribeck_velocity = 1e-3;    ///< v_s, m/s
+        double shape_exponent = 2.0;        ///< delta (2: Gaussian, 1: exponential)
+        double viscous_coefficient = 0.0;   ///< sigma_v, N s/m
+        double karnopp_band = 0.0;          ///< m/s; 0 = exact stick
+    };
+
+    explicit Stribeck(const Params& p) : p_(p) {
+        detail::require_positive(name, "coulomb_coefficient", p.coulomb_coefficient);
+        detail::require_at_least(name, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
+                                 ">= coulomb_coefficient and finite");
+        detail::require_positive(name, "stribeck_velocity", p.stribeck_velocity);
+        detail::require_positive(name, "shape_exponent", p.shape_exponent);
+        detail::require_non_negative(name, "viscous_coefficient", p.viscous_coefficient);
+        detail::require_non_negative(name, "karnopp_band", p.karnopp_band);
+    }
+
+    const Params& params() const { return p_; }
+
+    double static_limit(double normal_force) const { return p_.static_coefficient * normal_force; }
+    double slip_force(double v_r, double normal_force, int direction) const {
+        const double decay = std::exp(-std::pow(std::abs(v_r) / p_.stribeck_velocity, p_.shape_exponent));
+        const double level = p_.coulomb_coefficient + (p_.static_coefficient - p_.coulomb_coefficient) * decay;
+        return direction * level * normal_force + p_.viscous_coefficient * v_r;
+    }
+    double karnopp_band() const { return p_.karnopp_band; }
+
+private:
+    Params p_;
+};
+
+}  // namespace frictionsim

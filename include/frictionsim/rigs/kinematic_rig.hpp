@@ -1,0 +1,110 @@
+// A kinematic rig: a friction law driven by a prescribed relative velocity v_r(t) and normal force N(t), as
+// identification from measured signals needs. There is no mass, so nothing can hold the contact in stick:
+// set-valued laws give their slip force on the branch sgn(v_r), and zero crossings of v_r are located as
+// events (the force jumps there). A Karnopp band needs the force that would stick, which a kinematic rig
+// does not have: such laws are rejected. States: the law's states, friction impulse int F dt and friction
+// work int F v_r dt (energy dissipated plus what the law stores).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+
+#include "../detail/validate.hpp"
+#include "contact_switching.hpp"
+#include "signals.hpp"
+
+namespace frictionsim {
+
+template <class Law, class RelativeVelocity, class NormalForce = ConstantSignal>
+class KinematicRig {
+    static constexpr std::size_t Z = Law::state_count;
+    static constexpr bool branches = Law::has_stick || ContactSwitching<Law>::guard_count == 1;
+
+public:
+    static constexpr std::size_t state_size = Z + 2;
+    static constexpr std::size_t guard_count = branches ? 1 : 0;
+    static constexpr std::size_t law_state = 0, friction_impulse = Z, friction_work = Z + 1;
+
+    KinematicRig(Law law, RelativeVelocity relative_velocity, NormalForce normal_force,
+                 std::array<double, Z> initial_law_state = {})
+        : law_(std::move(law)), v_r_(std::move(relative_velocity)), normal_(std::move(normal_force)),
+          z0_(initial_law_state) {
+        if constexpr (Law::has_stick)
+            if (law_.karnopp_band() > 0.0)
+                detail::reject("KinematicRig", "karnopp_band",
+                               "zero: a Karnopp band needs the force that would stick, which a kinematic rig lacks",
+                               law_.karnopp_band());
+        for (double z : z0_) detail::require_finite("KinematicRig", "initial_law_state", z);
+    }
+
+    const Law& law() const { return law_; }
+    double relative_velocity(double t) const { return v_r_(t); }
+
+    double friction_force(double t, const double* x, int mode) const {
+        return force(v_r_(t), normal_force(t), x, mode);
+    }
+
+    void rhs(double t, const double* x, int mode, double* dxdt) const {
+        const double v = v_r_(t), n = normal_force(t);
+        const double f = force(v, n, x, mode);
+        if constexpr (Z > 0) law_.state_derivative(v, n, x + law_state, mode, dxdt + law_state);
+        dxdt[friction_impulse] = f;
+        dxdt[friction_work] = f * v;
+    }
+
+    void guards(double t, const double* /*x*/, int mode, double* g) const {
+        if constexpr (branches) g[0] = mode * v_r_(t);
+    }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t, int) const { return "relative_velocity"; }
+    const char* mode_name(int mode) const { return branches ? contact_mode_name(mode) : "smooth"; }
+
+    int initial_mode(double t, const double* /*x*/) const {
+        if constexpr (!branches) return 0;
+        const double v = v_r_(t);
+        if (v != 0.0) return sign_of(v);
+        const double dt = 1e-9 * std::max(1.0, std::abs(t));  // starting at rest: the side v_r heads to
+        const int s = sign_of(v_r_(t + dt));
+        return s != 0 ? s : int{slip_positive};
+    }
+    int switch_mode(double, double*, int mode, const int*) const { return -mode; }
+
+    std::array<double, state_size> initial_state() const {
+        std::array<double, state_size> x{};
+        for (std::size_t i = 0; i < Z; ++i) x[law_state + i] = z0_[i];
+        return x;
+    }
+    std::array<const char*, state_size> state_names() const {
+        std::array<const char*, state_size> n{};
+        if constexpr (Z > 0)
+            for (std::size_t i = 0; i < Z; ++i) n[law_state + i] = Law::state_names[i];
+        n[friction_impulse] = "friction_impulse";
+        n[friction_work] = "friction_work";
+        return n;
+    }
+
+private:
+    double normal_force(double t) const {
+        const double n = normal_(t);
+        if (!(n > 0.0)) detail::reject("KinematicRig", "normal_force", "positive at every time", n);
+        return n;
+    }
+    double force(double v, double n, const double* x, int mode) const {
+        if constexpr (Law::has_stick) {
+            (void)x;
+            return law_.slip_force(v, n, mode != 0 ? mode : sign_of(v));
+        } else {
+            return law_.force(v, n, x + law_state, mode);
+        }
+    }
+
+    Law law_;
+    RelativeVelocity v_r_;
+    NormalForce normal_;
+    std::array<double, Z> z0_;
+};
+
+}  // namespace frictionsim

@@ -1,0 +1,268 @@
+// Header-only Dormand-Prince RK5(4) with FSAL, PI step control and 4th-order dense output
+// (Hairer, Norsett & Wanner, Solving ODEs I, sec. II.5-6; coefficients of their DOPRI5 code), plus root
+// location of the switching functions on the dense output. For rigs that are accuracy-limited, not stiff:
+// at tight tolerance CVODE's per-step overhead (Newton, history, interpolation) is wasted on them.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <sstream>
+
+#include "../error.hpp"
+#include "hybrid_system.hpp"
+#include "options.hpp"
+#include "result.hpp"
+
+namespace frictionsim {
+
+template <class System>
+class DormandPrince {
+public:
+    static constexpr std::size_t N = System::state_size;
+    static constexpr std::size_t G = System::guard_count;
+    using State = std::array<double, N>;
+
+    DormandPrince(const System& system, const SolverOptions& options) : sys_(system), opt_(options) {}
+
+    void restart(double t, const double* x, int mode) {
+        t_ = t_prev_ = t;
+        mode_ = mode;
+        std::copy(x, x + N, y_.begin());
+        rhs(t_, y_, k1_);
+        h_ = 0.0;  // choose anew: the dynamics just changed discontinuously
+        facold_ = 1e-4;
+        last_rejected_ = false;
+        guards(t_, y_, g_);
+        for (std::size_t i = 0; i < G; ++i) masked_[i] = g_[i] == 0.0;
+        roots_.fill(0);
+        ++stats_.restarts;
+    }
+
+    StepResult step(double t_stop) {
+        if (h_ == 0.0) h_ = opt_.initial_step > 0.0 ? opt_.initial_step : initial_step(t_stop);
+        for (;;) {
+            if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
+            double h = std::min({h_, opt_.max_step, t_stop - t_});
+            const bool last = t_ + h >= t_stop || (t_stop - (t_ + h)) <= 1e-12 * std::abs(t_stop);
+            if (last) h = t_stop - t_;
+            if (h <= 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_)))
+                fail("step size underflow (stiff, discontinuous or non-finite right-hand side)");
+            ++stats_.steps;
+            const double err = attempt(h);
+            if (err <= 1.0) {
+                accept(h, err, last ? t_stop : t_ + h);
+                return locate_roots();
+            }
+            ++stats_.error_test_failures;
+            last_rejected_ = true;
+            h_ = std::isfinite(err) ? h / std::min(kFacMaxInv, std::pow(err, kExpo1) / kSafety) : 0.1 * h;
+        }
+    }
+
+    /// Dense output of the last step (Hairer's contd5), valid on [previous_time(), time()].
+    void interpolate(double t, double* x) const {
+        const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
+        for (std::size_t i = 0; i < N; ++i)
+            x[i] = rc1_[i] + s * (rc2_[i] + s1 * (rc3_[i] + s * (rc4_[i] + s1 * rc5_[i])));
+    }
+
+    double time() const { return t_; }
+    double previous_time() const { return t_prev_; }
+    const double* state() const { return y_.data(); }
+    const int* roots() const { return roots_.data(); }
+    SolverStats stats() const { return stats_; }
+
+private:
+    // Dormand-Prince 5(4) tableau.
+    static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+    static constexpr double a21 = 1.0 / 5;
+    static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+    static constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+    static constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
+    static constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                            a65 = -5103.0 / 18656;
+    static constexpr double a71 = 35.0 / 384, a73 = 500.0 / 1113, a74 = 125.0 / 192, a75 = -2187.0 / 6784,
+                            a76 = 11.0 / 84;
+    static constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                            e6 = 22.0 / 525, e7 = -1.0 / 40;
+    static constexpr double d1 = -12715105075.0 / 11282082432, d3 = 87487479700.0 / 32700410799,
+                            d4 = -10690763975.0 / 1880347072, d5 = 701980252875.0 / 199316789632,
+                            d6 = -1453857185.0 / 822651844, d7 = 69997945.0 / 29380423;
+    // PI step-size control (Hairer's defaults: beta 0.04, safety 0.9, factor in [0.2, 10]).
+    static constexpr double kBeta = 0.04, kExpo1 = 0.2 - 0.04 * 0.75, kSafety = 0.9;
+    static constexpr double kFacMaxInv = 1.0 / 0.2, kFacMinInv = 1.0 / 10.0;
+
+    void rhs(double t, const State& x, State& dxdt) {
+        sys_.rhs(t, x.data(), mode_, dxdt.data());
+        ++stats_.rhs_evaluations;
+    }
+    void guards(double t, const State& x, std::array<double, G>& g) {
+        if constexpr (G > 0) {
+            sys_.guards(t, x.data(), mode_, g.data());
+            ++stats_.guard_evaluations;
+        }
+    }
+    double scale(std::size_t i, double a, double b) const {
+        return opt_.absolute_tolerance(i) + opt_.rtol * std::max(std::abs(a), std::abs(b));
+    }
+
+    [[noreturn]] void fail(const char* why) const {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "DormandPrince: " << why << " at t = " << t_ << " s";
+        throw SimulationError(msg.str(), t_);
+    }
+
+    // Hairer's starting step: a guess from |y|/|f|, refined by one explicit Euler step.
+    double initial_step(double t_stop) {
+        double dnf = 0.0, dny = 0.0;
+        for (std::size_t i = 0; i < N; ++i) {
+            const double sk = scale(i, y_[i], 0.0);
+            dnf += (k1_[i] / sk) * (k1_[i] / sk);
+            dny += (y_[i] / sk) * (y_[i] / sk);
+        }
+        double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : 0.01 * std::sqrt(dny / dnf);
+        h = std::min({h, opt_.max_step, t_stop - t_});
+        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * k1_[i];
+        rhs(t_ + h, ytmp_, k2_);
+        double der2 = 0.0;
+        for (std::size_t i = 0; i < N; ++i) {
+            const double d = (k2_[i] - k1_[i]) / scale(i, y_[i], 0.0);
+            der2 += d * d;
+        }
+        const double der12 = std::max(std::sqrt(der2) / h, std::sqrt(dnf));
+        const double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.2);
+        return std::min({100.0 * h, h1, opt_.max_step});
+    }
+
+    // One trial step of size h from (t_, y_): fills k2..k7 and y1_, returns the scaled error norm.
+    double attempt(double h) {
+        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * a21 * k1_[i];
+        rhs(t_ + c2 * h, ytmp_, k2_);
+        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a31 * k1_[i] + a32 * k2_[i]);
+        rhs(t_ + c3 * h, ytmp_, k3_);
+        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a41 * k1_[i] + a42 * k2_[i] + a43 * k3_[i]);
+        rhs(t_ + c4 * h, ytmp_, k4_);
+        for (std::size_t i = 0; i < N; ++i)
+            ytmp_[i] = y_[i] + h * (a51 * k1_[i] + a52 * k2_[i] + a53 * k3_[i] + a54 * k4_[i]);
+        rhs(t_ + c5 * h, ytmp_, k5_);
+        for (std::size_t i = 0; i < N; ++i)
+            ytmp_[i] = y_[i] + h * (a61 * k1_[i] + a62 * k2_[i] + a63 * k3_[i] + a64 * k4_[i] + a65 * k5_[i]);
+        rhs(t_ + h, ytmp_, k6_);
+        for (std::size_t i = 0; i < N; ++i)
+            y1_[i] = y_[i] + h * (a71 * k1_[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
+        rhs(t_ + h, y1_, k7_);
+        double err = 0.0;
+        for (std::size_t i = 0; i < N; ++i) {
+            const double e =
+                h * (e1 * k1_[i] + e3 * k3_[i] + e4 * k4_[i] + e5 * k5_[i] + e6 * k6_[i] + e7 * k7_[i]);
+            const double r = e / scale(i, y_[i], y1_[i]);
+            err += r * r;
+        }
+        err = std::sqrt(err / static_cast<double>(N));
+        return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
+    }
+
+    void accept(double h, double err, double t_new) {
+        for (std::size_t i = 0; i < N; ++i) {  // dense-output coefficients (Hairer's rcont1..5)
+            const double dy = y1_[i] - y_[i], bspl = h * k1_[i] - dy;
+            rc1_[i] = y_[i];
+            rc2_[i] = dy;
+            rc3_[i] = bspl;
+            rc4_[i] = dy - h * k7_[i] - bspl;
+            rc5_[i] = h * (d1 * k1_[i] + d3 * k3_[i] + d4 * k4_[i] + d5 * k5_[i] + d6 * k6_[i] + d7 * k7_[i]);
+        }
+        double fac = std::pow(err, kExpo1) / std::pow(facold_, kBeta);
+        fac = std::max(kFacMinInv, std::min(kFacMaxInv, fac / kSafety));
+        double h_new = h / fac;
+        if (last_rejected_) h_new = std::min(h_new, h);
+        facold_ = std::max(err, 1e-4);
+        last_rejected_ = false;
+        h_dense_ = h;
+        t_prev_ = t_;
+        t_ = t_new;
+        y_ = y1_;
+        k1_ = k7_;  // first same as last
+        h_ = h_new;
+    }
+
+    // After an accepted step: did a switching function cross zero in its direction? If so, find the earliest
+    // crossing on the dense output (Illinois), cut the step there and report every guard that has crossed.
+    StepResult locate_roots() {
+        if constexpr (G == 0) {
+            return {t_, false};
+        } else {
+            std::array<double, G> g1{};
+            guards(t_, y_, g1);
+            double t_root = t_;
+            bool any = false;
+            for (std::size_t i = 0; i < G; ++i) {
+                if (masked_[i]) continue;
+                if (crossing(g_[i], g1[i], sys_.guard_direction(i, mode_)) == 0) continue;
+                any = true;
+                t_root = std::min(t_root, bracket_root(i, g_[i], g1[i]));
+            }
+            if (!any) {
+                for (std::size_t i = 0; i < G; ++i) {
+                    if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // first non-zero sign is its reference
+                    g_[i] = g1[i];
+                }
+                return {t_, false};
+            }
+            if (t_root < t_) {
+                interpolate(t_root, y_.data());
+                t_ = t_root;
+                guards(t_, y_, g1);
+                rhs(t_, y_, k1_);
+            }
+            for (std::size_t i = 0; i < G; ++i)
+                roots_[i] = masked_[i] ? 0 : crossing(g_[i], g1[i], sys_.guard_direction(i, mode_));
+            return {t_, true};
+        }
+    }
+
+    // Guard i changes sign on (t_prev_, t_]: Illinois false position on the dense output. Returns the right
+    // end of the final bracket, where the guard has already crossed (as CVODE does), to within CVODE's ttol.
+    double bracket_root(std::size_t i, double g_lo, double g_hi) {
+        double lo = t_prev_, hi = t_;
+        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
+        const int dir = sys_.guard_direction(i, mode_);
+        int side = 0;
+        std::array<double, G> g{};
+        for (int iter = 0; iter < 200 && hi - lo > tol; ++iter) {
+            double tm = hi - g_hi * (hi - lo) / (g_hi - g_lo);
+            if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
+            interpolate(tm, ytmp_.data());
+            guards(tm, ytmp_, g);
+            if (crossing(g_[i], g[i], dir) != 0) {
+                hi = tm;
+                g_hi = g[i];
+                if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end
+                side = 1;
+            } else {
+                lo = tm;
+                g_lo = g[i];
+                if (side == -1) g_hi *= 0.5;
+                side = -1;
+            }
+        }
+        return hi;
+    }
+
+    const System& sys_;
+    const SolverOptions& opt_;
+    int mode_ = 0;
+    double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0, facold_ = 1e-4;
+    bool last_rejected_ = false;
+    State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
+    State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
+    std::array<double, G> g_{};
+    std::array<bool, G> masked_{};
+    std::array<int, G> roots_{};
+    SolverStats stats_;
+};
+
+}  // namespace frictionsim

@@ -1,0 +1,181 @@
+// The hybrid event loop shared by every integrator: integrate, report outputs from dense output, stop at
+// the roots of the switching functions, resolve the new mode algebraically, restart exactly, and bound the
+// number of switches per time window (chattering / Zeno guard).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../error.hpp"
+#include "hybrid_system.hpp"
+#include "options.hpp"
+#include "result.hpp"
+
+namespace frictionsim {
+
+/// What integrate_hybrid hands back: the final state and mode, and the integrator's counters.
+template <std::size_t N>
+struct HybridOutcome {
+    std::array<double, N> state{};
+    int mode = 0;
+    SolverStats stats;
+};
+
+/// Observer that ignores everything: the default when only the final state matters.
+struct NullObserver {
+    template <class... A>
+    void output(A&&...) {}
+    template <class... A>
+    void step(A&&...) {}
+    template <class... A>
+    void event(A&&...) {}
+};
+
+namespace detail {
+
+/// Ring of the last (bound + 1) switch times: more than `bound` switches within `window` seconds is chattering.
+class ChatteringGuard {
+public:
+    explicit ChatteringGuard(const SolverOptions& o)
+        : window_(o.event_window), times_(static_cast<std::size_t>(o.max_events_in_window) + 1) {}
+
+    /// Records a switch at t; true when the bound is exceeded.
+    bool record(double t) {
+        times_[next_] = t;
+        next_ = (next_ + 1) % times_.size();
+        if (count_ < times_.size()) ++count_;
+        return count_ == times_.size() && t - times_[next_] <= window_;  // times_[next_] is now the oldest
+    }
+
+private:
+    double window_;
+    std::vector<double> times_;
+    std::size_t next_ = 0, count_ = 0;
+};
+
+/// Guards that are exactly zero right after a restart are masked by the integrators until they move. Probe
+/// which way each one moves (explicit Euler over a tiny step) so that one leaving zero towards its triggering
+/// side fires at once rather than being masked (SciML OrdinaryDiffEq #3222). Returns true if any fires.
+template <class System>
+bool zero_guards_triggering(const System& sys, double t, const double* x, int mode,
+                            std::array<int, System::guard_count>& fired) {
+    constexpr std::size_t N = System::state_size, G = System::guard_count;
+    std::array<double, G> g{};
+    sys.guards(t, x, mode, g.data());
+    bool any_zero = false;
+    for (double gi : g) any_zero = any_zero || gi == 0.0;
+    if (!any_zero) return false;
+    const double dt = 1e-9 * std::max(1.0, std::abs(t));
+    std::array<double, N> dxdt{}, probe{};
+    sys.rhs(t, x, mode, dxdt.data());
+    for (std::size_t k = 0; k < N; ++k) probe[k] = x[k] + dt * dxdt[k];
+    std::array<double, G> g_probe{};
+    sys.guards(t + dt, probe.data(), mode, g_probe.data());
+    bool any = false;
+    for (std::size_t i = 0; i < G; ++i) {
+        fired[i] = 0;
+        if (g[i] != 0.0) continue;
+        const int dir = sys.guard_direction(i, mode);
+        if (dir <= 0 && g_probe[i] < 0.0) fired[i] = -1;
+        if (dir >= 0 && g_probe[i] > 0.0) fired[i] = +1;
+        any = any || fired[i] != 0;
+    }
+    return any;
+}
+
+inline void check_time_span(double t0, double t_end, const std::vector<double>& output_times) {
+    detail::require_finite("simulate", "t_start", t0);
+    detail::require_finite("simulate", "t_end", t_end);
+    if (!(t_end > t0)) detail::reject("simulate", "t_end", "greater than the start time", t_end);
+    if (!output_times.empty() && (output_times.front() < t0 || output_times.back() > t_end))
+        detail::reject("SolverOptions", "output_times", "within [t_start, t_end]",
+                       output_times.front() < t0 ? output_times.front() : output_times.back());
+}
+
+}  // namespace detail
+
+/// Integrate `sys` from (t0, x0) to t_end with integrator `Integrator<System>`. The observer receives
+///   output(t, x, mode)          at every requested output time (dense output, not by stopping there),
+///   step(t, x, mode)            after every internal step when options.record_steps,
+///   event(const Event&, t, x)   at every switch, with the state after the switch.
+/// Throws SimulationError (time reached) when the integrator fails and ChatteringError when the switching
+/// bound trips; everything observed before the throw stays with the observer.
+template <template <class> class Integrator, class System, class Observer = NullObserver>
+HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
+                                                        std::array<double, System::state_size> x, double t0,
+                                                        double t_end, const SolverOptions& options,
+                                                        Observer&& observer = {}) {
+    constexpr std::size_t G = System::guard_count;
+    options.validate(System::state_size);
+    detail::check_time_span(t0, t_end, options.output_times);
+    for (double xi : x) detail::require_finite("simulate", "initial_state", xi);
+
+    const std::vector<double>& outputs = options.output_times;
+    std::size_t next_output = 0;
+    int mode = sys.initial_mode(t0, x.data());
+    Integrator<System> integrator(sys, options);
+    detail::ChatteringGuard chattering(options);
+    std::array<int, G> fired{};
+    std::array<double, System::state_size> buffer{};
+
+    // Resolve a switch at t (state x, guards `fired`), log it, restart; repeat while guards that sit at zero
+    // after the restart head straight into their triggering side (cascading or simultaneous switches).
+    auto handle_switch = [&](double t) {
+        do {
+            const int before = mode;
+            mode = sys.switch_mode(t, x.data(), before, fired.data());
+            for (std::size_t i = 0; i < G; ++i) {
+                if (fired[i] == 0) continue;
+                Event e{t, static_cast<int>(i), sys.guard_name(i, before), before, mode,
+                        sys.mode_name(before), sys.mode_name(mode)};
+                observer.event(e, t, x.data());
+                if (chattering.record(t)) {
+                    std::ostringstream msg;
+                    msg << "chattering: more than " << options.max_events_in_window << " switches within "
+                        << options.event_window << " s, last of switching function '" << e.name << "' ("
+                        << e.mode_before_name << " -> " << e.mode_after_name << ") at t = " << t
+                        << " s; raise SolverOptions::max_events_in_window or event_window, or regularise the law";
+                    throw ChatteringError(msg.str(), t, e.name);
+                }
+            }
+            integrator.restart(t, x.data(), mode);
+        } while (detail::zero_guards_triggering(sys, t, x.data(), mode, fired));
+    };
+
+    integrator.restart(t0, x.data(), mode);
+    while (next_output < outputs.size() && outputs[next_output] <= t0) {
+        observer.output(t0, x.data(), mode);
+        ++next_output;
+    }
+    if (options.record_steps && next_output == 0) observer.step(t0, x.data(), mode);
+    if (detail::zero_guards_triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
+
+    while (integrator.time() < t_end) {
+        const StepResult s = integrator.step(t_end);
+        while (next_output < outputs.size() && outputs[next_output] <= s.t) {
+            integrator.interpolate(outputs[next_output], buffer.data());
+            observer.output(outputs[next_output], buffer.data(), mode);
+            ++next_output;
+        }
+        if (options.record_steps) observer.step(s.t, integrator.state(), mode);
+        if (s.root) {
+            const double* xs = integrator.state();
+            std::copy(xs, xs + System::state_size, x.begin());
+            std::copy(integrator.roots(), integrator.roots() + G, fired.begin());
+            handle_switch(s.t);
+        }
+    }
+    HybridOutcome<System::state_size> out;
+    std::copy(integrator.state(), integrator.state() + System::state_size, out.state.begin());
+    out.mode = mode;
+    out.stats = integrator.stats();
+    return out;
+}
+
+}  // namespace frictionsim

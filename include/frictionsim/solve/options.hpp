@@ -1,0 +1,71 @@
+// Solver options: one aggregate with defaults (deal.II AdditionalData style). SI units throughout.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "../detail/validate.hpp"
+
+namespace frictionsim {
+
+/// Which integrator drives the hybrid event loop.
+enum class Method {
+    dormand_prince,  ///< header-only explicit RK5(4) with dense output: accuracy-limited, non-stiff rigs
+    cvode_bdf,       ///< SUNDIALS CVODE, BDF + Newton with dense direct solver: stiff contact laws
+    cvode_adams,     ///< SUNDIALS CVODE, Adams-Moulton + fixed point: smooth, non-stiff
+};
+
+inline const char* method_name(Method m) {
+    switch (m) {
+        case Method::dormand_prince: return "dormand_prince";
+        case Method::cvode_bdf: return "cvode_bdf";
+        case Method::cvode_adams: return "cvode_adams";
+    }
+    return "unknown";
+}
+
+struct SolverOptions {
+    Method method = Method::dormand_prince;
+    double rtol = 1e-8;
+    double atol = 1e-10;                 ///< scalar absolute tolerance, used when atol_per_state is empty
+    std::vector<double> atol_per_state;  ///< one absolute tolerance per state, overrides atol
+    long max_steps = 10'000'000;         ///< internal steps over the whole run
+    double max_step = std::numeric_limits<double>::infinity();
+    double initial_step = 0.0;           ///< 0: the integrator chooses
+    std::vector<double> output_times;    ///< increasing; states are interpolated there (dense output)
+    bool record_steps = false;           ///< also record the state after every internal step
+    /// Chattering / Zeno bound: more than max_events_in_window switches within event_window seconds stops the run.
+    int max_events_in_window = 100;
+    double event_window = 1e-6;
+
+    /// Throws InvalidParameter naming the offending option. `state_size` sizes atol_per_state.
+    void validate(std::size_t state_size) const {
+        constexpr const char* who = "SolverOptions";
+        detail::require_positive(who, "rtol", rtol);
+        if (rtol < 1e-14) detail::reject(who, "rtol", ">= 1e-14 (below double precision)", rtol);
+        if (atol_per_state.empty()) {
+            detail::require_positive(who, "atol", atol);
+        } else {
+            if (atol_per_state.size() != state_size)
+                detail::reject(who, "atol_per_state", "one entry per state (size given)",
+                               static_cast<double>(atol_per_state.size()));
+            for (double a : atol_per_state) detail::require_positive(who, "atol_per_state", a);
+        }
+        if (max_steps <= 0) detail::reject(who, "max_steps", "positive", static_cast<double>(max_steps));
+        if (!(max_step > 0.0)) detail::reject(who, "max_step", "positive", max_step);
+        detail::require_non_negative(who, "initial_step", initial_step);
+        if (max_events_in_window <= 0)
+            detail::reject(who, "max_events_in_window", "positive", max_events_in_window);
+        detail::require_positive(who, "event_window", event_window);
+        for (std::size_t i = 0; i < output_times.size(); ++i) {
+            detail::require_finite(who, "output_times", output_times[i]);
+            if (i > 0 && !(output_times[i] > output_times[i - 1]))
+                detail::reject(who, "output_times", "strictly increasing", output_times[i]);
+        }
+    }
+
+    double absolute_tolerance(std::size_t i) const { return atol_per_state.empty() ? atol : atol_per_state[i]; }
+};
+
+}  // namespace frictionsim

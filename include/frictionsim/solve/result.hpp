@@ -1,0 +1,61 @@
+// What a simulation returns: output rows (time, states, friction force, mode), the event log, solver counters.
+// Plain vectors, row-major states, so Python can wrap them without more than one copy.
+#pragma once
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace frictionsim {
+
+/// One switch of the hybrid system: which switching function fired and the modes around it.
+struct Event {
+    double time = 0.0;
+    int switching_function = -1;  ///< index of the guard that fired
+    std::string name;             ///< its name, e.g. "relative_velocity"
+    int mode_before = 0;
+    int mode_after = 0;
+    std::string mode_before_name;
+    std::string mode_after_name;
+};
+
+struct SolverStats {
+    long steps = 0;
+    long rhs_evaluations = 0;
+    long jacobian_evaluations = 0;
+    long guard_evaluations = 0;
+    long error_test_failures = 0;
+    long restarts = 0;
+    long events = 0;
+};
+
+struct Result {
+    std::vector<std::string> state_names;
+    std::vector<double> t;
+    std::vector<double> states;          ///< row-major, t.size() x state_names.size()
+    std::vector<double> friction_force;  ///< N (or N m for torsional rigs), one per row
+    std::vector<int> mode;               ///< mode at each row
+    std::vector<Event> events;
+    SolverStats stats;
+    bool completed = false;              ///< false when the run stopped early (see SimulationError)
+    double t_reached = 0.0;
+
+    std::size_t state_count() const { return state_names.size(); }
+    std::size_t rows() const { return t.size(); }
+    double state(std::size_t row, std::size_t column) const { return states[row * state_count() + column]; }
+    /// Column index of a named state; throws std::out_of_range when there is none.
+    std::size_t column(const std::string& name) const {
+        for (std::size_t i = 0; i < state_names.size(); ++i)
+            if (state_names[i] == name) return i;
+        throw std::out_of_range("Result: no state named '" + name + "'");
+    }
+    std::vector<double> column_values(const std::string& name) const {
+        const std::size_t c = column(name);
+        std::vector<double> out(rows());
+        for (std::size_t r = 0; r < rows(); ++r) out[r] = state(r, c);
+        return out;
+    }
+};
+
+}  // namespace frictionsim
