@@ -5,9 +5,10 @@
 //  set-valued law, exact stick (Leine's switch model):
 //    slip s:  guard  s v_r  (falling)                     -> at zero: stick if |F_stick| <= F_s, else slip
 //    stick:   guards F_s - F_stick, F_s + F_stick (falling) -> slip in the direction of F_stick
-//  set-valued law with a Karnopp band dv:
-//    slip s:  guard  s v_r - dv (falling)                 -> band
-//    band:    guards dv - v_r, dv + v_r (falling)          -> slip; in the band F = clamp(F_stick, +-F_s)
+//  set-valued law with a Karnopp band dv (Karnopp 1985): the contact sticks once |v_r| falls to dv, at the
+//  relative velocity it had (not projected to zero), and leaves as in exact stick:
+//    slip s:  guard  s v_r - dv (falling)                 -> band (a stick mode)
+//    band:    guards F_s - F_stick, F_s + F_stick (falling) -> slip in the direction of F_stick
 //  state law with a kink at v_r = 0 (Dahl): branch s, guard s v_r (falling) -> branch -s
 //  smooth state law (LuGre): one mode, no guard.
 // Every guard falls through zero to fire, so each has a direction and no crossing is seen twice.
@@ -43,18 +44,12 @@ struct ContactSwitching {
 
     static void guards(const Law& law, double v_r, double normal_force, int mode, double stick_force, double* g) {
         if constexpr (set_valued) {
-            const double band = law.karnopp_band();
             if (mode == stick) {
-                if (band > 0.0) {
-                    g[0] = band - v_r;
-                    g[1] = band + v_r;
-                } else {
-                    const double limit = law.static_limit(normal_force);
-                    g[0] = limit - stick_force;
-                    g[1] = limit + stick_force;
-                }
+                const double limit = law.static_limit(normal_force);
+                g[0] = limit - stick_force;
+                g[1] = limit + stick_force;
             } else {
-                g[0] = mode * v_r - band;
+                g[0] = mode * v_r - law.karnopp_band();
                 g[1] = 1.0;  // unused in slip
             }
         } else if constexpr (guard_count == 1) {
@@ -67,7 +62,6 @@ struct ContactSwitching {
     static const char* guard_name(const Law& law, std::size_t i, int mode) {
         if constexpr (set_valued) {
             if (mode != stick) return law.karnopp_band() > 0.0 ? "karnopp_band_entry" : "relative_velocity";
-            if (law.karnopp_band() > 0.0) return i == 0 ? "karnopp_band_upper" : "karnopp_band_lower";
             return i == 0 ? "static_limit_positive" : "static_limit_negative";
         } else {
             return "relative_velocity";
@@ -88,10 +82,9 @@ struct ContactSwitching {
     /// Mode consistent with the state: used at the start of a run.
     static int initial_mode(const Law& law, double v_r, double normal_force, const double* z, double stick_force) {
         if constexpr (set_valued) {
-            const double band = law.karnopp_band();
-            if (band > 0.0) return std::abs(v_r) < band ? int{stick} : sign_of(v_r);
-            if (v_r != 0.0) return sign_of(v_r);
-            return std::abs(stick_force) <= law.static_limit(normal_force) ? int{stick} : sign_of(stick_force);
+            if (std::abs(v_r) > law.karnopp_band()) return sign_of(v_r);
+            if (std::abs(stick_force) <= law.static_limit(normal_force)) return stick;
+            return v_r != 0.0 ? sign_of(v_r) : sign_of(stick_force);
         } else if constexpr (guard_count == 1) {
             if (v_r != 0.0) return sign_of(v_r);
             const int s = sign_of(stick_force - law.force(0.0, normal_force, z, +1));
@@ -106,14 +99,11 @@ struct ContactSwitching {
                            bool& stop_relative_motion) {
         stop_relative_motion = false;
         if constexpr (set_valued) {
-            if (law.karnopp_band() > 0.0) {
-                if (mode != stick) return stick;
-                return fired[0] != 0 ? int{slip_positive} : int{slip_negative};
-            }
             if (mode == stick) return fired[0] != 0 ? int{slip_positive} : int{slip_negative};
+            const bool holds = std::abs(stick_force) <= law.static_limit(normal_force);
+            if (law.karnopp_band() > 0.0) return holds ? int{stick} : sign_of(stick_force);  // held at this v_r
             stop_relative_motion = true;  // v_r reached zero: stick, or reverse through zero
-            if (std::abs(stick_force) <= law.static_limit(normal_force)) return stick;
-            return sign_of(stick_force);
+            return holds ? int{stick} : sign_of(stick_force);
         } else {
             (void)law, (void)normal_force, (void)fired, (void)stick_force;
             return -mode;

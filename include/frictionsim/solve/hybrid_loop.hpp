@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <exception>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -89,6 +90,22 @@ bool zero_guards_triggering(const System& sys, double t, const double* x, int mo
     return any;
 }
 
+/// One integrator step; an exception from the model (a sampled signal run out, a law's own check) becomes a
+/// SimulationError that says where the run stopped, so the caller keeps the results up to there.
+template <class Integrator>
+StepResult step_reporting_time(Integrator& integrator, double t_stop) {
+    try {
+        return integrator.step(t_stop);
+    } catch (const SimulationError&) {
+        throw;
+    } catch (const std::exception& e) {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "model evaluation failed after t = " << integrator.time() << " s: " << e.what();
+        throw SimulationError(msg.str(), integrator.time());
+    }
+}
+
 inline void check_time_span(double t0, double t_end, const std::vector<double>& output_times) {
     detail::require_finite("simulate", "t_start", t0);
     detail::require_finite("simulate", "t_end", t_end);
@@ -157,7 +174,7 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
     if (detail::zero_guards_triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
 
     while (integrator.time() < t_end) {
-        const StepResult s = integrator.step(t_end);
+        const StepResult s = detail::step_reporting_time(integrator, t_end);
         while (next_output < outputs.size() && outputs[next_output] <= s.t) {
             integrator.interpolate(outputs[next_output], buffer.data());
             observer.output(outputs[next_output], buffer.data(), mode);

@@ -1,0 +1,221 @@
+// The hybrid event loop on small systems whose switching behaviour is known exactly, on every integrator:
+// a guard that sits at zero right after a switch and heads into its triggering side, simultaneous switches,
+// a Zeno-prone bouncing ball that trips the chattering bound, and failures mid-run that keep the results.
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <frictionsim/simulate.hpp>
+
+#include "catch.hpp"
+
+using namespace frictionsim;
+
+namespace {
+
+/// Shared boilerplate of the toy systems: names, and a mode that is its own name.
+struct ToyBase {
+    const char* mode_name(int) const { return "toy"; }
+    double friction_force(double, const double*, int) const { return 0.0; }
+};
+
+/// x' = +1 in mode 0 until x = 1; then mode 1 (x' = -1) whose guard x - 1 is zero at the switch and falls
+/// at once: it must fire immediately (mode 2, x' = 0), not be masked as "starting at zero".
+struct ZeroGuardAfterSwitch : ToyBase {
+    static constexpr std::size_t state_size = 1, guard_count = 1;
+    void rhs(double, const double*, int mode, double* dx) const { dx[0] = mode == 0 ? 1.0 : mode == 1 ? -1.0 : 0.0; }
+    void guards(double, const double* x, int mode, double* g) const { g[0] = mode == 0 ? 1.0 - x[0] : mode == 1 ? x[0] - 1.0 : 1.0; }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t, int mode) const { return mode == 0 ? "top" : "turn"; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double* x, int mode, const int*) const {
+        if (mode == 0) x[0] = 1.0;  // project onto the guard surface exactly
+        return mode + 1;
+    }
+    std::array<const char*, 1> state_names() const { return {"x"}; }
+    std::array<double, 1> initial_state() const { return {0.0}; }
+};
+
+/// x' = 1, y' = 2: guards 1 - x and 2 - y cross together at t = 1. The mode records which fired (bits).
+struct Simultaneous : ToyBase {
+    static constexpr std::size_t state_size = 2, guard_count = 2;
+    void rhs(double, const double*, int, double* dx) const { dx[0] = 1.0; dx[1] = 2.0; }
+    void guards(double, const double* x, int mode, double* g) const {
+        g[0] = mode == 0 ? 1.0 - x[0] : 1.0;
+        g[1] = mode == 0 ? 2.0 - x[1] : 1.0;
+    }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t i, int) const { return i == 0 ? "x_reaches_1" : "y_reaches_2"; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double*, int, const int* fired) const { return (fired[0] ? 1 : 0) | (fired[1] ? 2 : 0); }
+    std::array<const char*, 2> state_names() const { return {"x", "y"}; }
+    std::array<double, 2> initial_state() const { return {0.0, 0.0}; }
+};
+
+/// Bouncing ball, restitution e: impacts accumulate at a finite (Zeno) time.
+struct BouncingBall : ToyBase {
+    static constexpr std::size_t state_size = 2, guard_count = 1;
+    double g = 9.81, restitution = 0.5;
+    void rhs(double, const double* x, int, double* dx) const { dx[0] = x[1]; dx[1] = -g; }
+    void guards(double, const double* x, int, double* gv) const { gv[0] = x[0]; }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t, int) const { return "floor_contact"; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double* x, int mode, const int*) const {
+        x[0] = 0.0;
+        x[1] = -restitution * x[1];
+        return mode;
+    }
+    std::array<const char*, 2> state_names() const { return {"height", "velocity"}; }
+    std::array<double, 2> initial_state() const { return {1.0, 0.0}; }
+};
+
+/// x' = 1 until the right-hand side fails at t > 0.5: by throwing, or by returning NaN.
+struct FailsMidRun : ToyBase {
+    static constexpr std::size_t state_size = 1, guard_count = 0;
+    bool nan = false;
+    void rhs(double t, const double*, int, double* dx) const {
+        if (t > 0.5) {
+            if (!nan) throw std::runtime_error("boom: model undefined beyond t = 0.5");
+            dx[0] = std::nan("");
+            return;
+        }
+        dx[0] = 1.0;
+    }
+    void guards(double, const double*, int, double*) const {}
+    int guard_direction(std::size_t, int) const { return 0; }
+    const char* guard_name(std::size_t, int) const { return ""; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double*, int mode, const int*) const { return mode; }
+    std::array<const char*, 1> state_names() const { return {"x"}; }
+    std::array<double, 1> initial_state() const { return {0.0}; }
+};
+
+// x'' = -x, x(0) = 1: x = cos t. A smooth system with no guard.
+struct Oscillator : ToyBase {
+    static constexpr std::size_t state_size = 2, guard_count = 0;
+    void rhs(double, const double* x, int, double* dx) const { dx[0] = x[1]; dx[1] = -x[0]; }
+    void guards(double, const double*, int, double*) const {}
+    int guard_direction(std::size_t, int) const { return 0; }
+    const char* guard_name(std::size_t, int) const { return ""; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double*, int m, const int*) const { return m; }
+    std::array<const char*, 2> state_names() const { return {"x", "v"}; }
+    std::array<double, 2> initial_state() const { return {1.0, 0.0}; }
+};
+
+SolverOptions options_for(Method m) {
+    SolverOptions o;
+    o.method = m;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("a guard that is zero right after a switch and heads into its triggering side fires at once", "[solver]") {
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf, Method::cvode_adams);
+    INFO(method_name(method));
+    SolverOptions o = options_for(method);
+    o.output_times = {0.5, 1.5, 2.0};
+    const Result r = simulate(ZeroGuardAfterSwitch{}, 2.0, o);
+    REQUIRE(r.events.size() == 2);
+    CHECK(r.events[0].time == Approx(1.0).margin(1e-12));
+    CHECK(r.events[0].name == "top");
+    CHECK(r.events[1].time == r.events[0].time);  // same instant: the cascade is resolved at the switch
+    CHECK(r.events[1].name == "turn");
+    CHECK(r.events[1].mode_after == 2);
+    CHECK(r.state(1, 0) == Approx(1.0).margin(1e-12));  // mode 2 holds x = 1 (x' = 0), never runs back down
+    CHECK(r.state(2, 0) == Approx(1.0).margin(1e-12));
+}
+
+TEST_CASE("simultaneous switches are handled in one resolution", "[solver]") {
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
+    INFO(method_name(method));
+    SolverOptions o = options_for(method);
+    o.output_times = {2.0};
+    const Result r = simulate(Simultaneous{}, 2.0, o);
+    REQUIRE(r.events.size() == 2);  // one log entry per switching function, same time, same resolution
+    CHECK(r.events[0].time == Approx(1.0).margin(1e-12));
+    CHECK(r.events[1].time == r.events[0].time);
+    CHECK(r.events[0].name == "x_reaches_1");
+    CHECK(r.events[1].name == "y_reaches_2");
+    CHECK(r.events[0].mode_after == 3);  // both guards seen by switch_mode at once
+    CHECK(r.events[1].mode_after == 3);
+}
+
+TEST_CASE("a Zeno-prone bouncing ball trips the chattering bound with a clear error and kept results",
+          "[solver]") {
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
+    INFO(method_name(method));
+    const BouncingBall ball;
+    // impacts at t1 = sqrt(2h/g), then intervals shrink by e: Zeno time t1 (1 + 2e/(1-e))
+    const double t1 = std::sqrt(2.0 / ball.g), zeno = t1 * (1 + 2 * ball.restitution / (1 - ball.restitution));
+    SolverOptions o = options_for(method);
+    o.max_events_in_window = 10;
+    o.event_window = 1e-3;
+    for (int i = 0; i < 100; ++i) o.output_times.push_back(i * 0.02);
+    try {
+        simulate(ball, 1.99, o);
+        FAIL("expected a ChatteringError");
+    } catch (const ChatteringError& e) {
+        CHECK(e.switching_function() == "floor_contact");
+        CHECK(std::string(e.what()).find("floor_contact") != std::string::npos);
+        CHECK(e.time_reached() < zeno);
+        CHECK(e.time_reached() > zeno - 2e-3);
+        REQUIRE(e.partial());
+        const Result& partial = *e.partial();
+        CHECK_FALSE(partial.completed);
+        CHECK(partial.events.size() >= 11);
+        CHECK(partial.events[0].time == Approx(t1).epsilon(1e-9));
+        REQUIRE(partial.rows() > 0);
+        CHECK(partial.t.back() <= e.time_reached());
+        CHECK(partial.t.back() > e.time_reached() - 0.02 - 1e-12);  // every output up to the stop is kept
+    }
+}
+
+TEST_CASE("a failure mid-run reports the time reached and keeps the results up to it", "[solver]") {
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf, Method::cvode_adams);
+    const bool nan = GENERATE(false, true);
+    INFO(method_name(method) << (nan ? " NaN" : " throw"));
+    FailsMidRun sys;
+    sys.nan = nan;
+    SolverOptions o = options_for(method);
+    o.max_step = 0.05;  // the time reached is the last accepted step: keep steps short enough to get close
+    for (int i = 0; i <= 10; ++i) o.output_times.push_back(0.1 * i);
+    try {
+        simulate(sys, 1.0, o);
+        FAIL("expected a SimulationError");
+    } catch (const SimulationError& e) {
+        CHECK(e.time_reached() <= 0.5 + 1e-9);
+        CHECK(e.time_reached() > 0.45);
+        if (!nan) CHECK(std::string(e.what()).find("boom") != std::string::npos);
+        REQUIRE(e.partial());
+        const Result& partial = *e.partial();
+        CHECK_FALSE(partial.completed);
+        CHECK(partial.t_reached == e.time_reached());
+        REQUIRE(partial.rows() >= 5);
+        for (std::size_t i = 0; i < partial.rows(); ++i) {
+            CHECK(partial.t[i] <= e.time_reached());
+            CHECK(partial.state(i, 0) == Approx(partial.t[i]).margin(1e-9));
+        }
+    }
+}
+
+TEST_CASE("Dormand-Prince: global error falls like rtol and dense output is as accurate as the steps", "[solver]") {
+    double previous = 1.0;
+    for (double rtol : {1e-6, 1e-8, 1e-10}) {
+        SolverOptions o;
+        o.rtol = rtol;
+        o.atol = rtol * 1e-2;
+        for (int i = 0; i <= 200; ++i) o.output_times.push_back(0.05 * i);  // mostly between steps
+        const Result r = simulate(Oscillator{}, 10.0, o);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < r.rows(); ++i) worst = std::max(worst, std::abs(r.state(i, 0) - std::cos(r.t[i])));
+        INFO("rtol " << rtol << ": max error " << worst << ", steps " << r.stats.steps);
+        CHECK(worst < 100 * rtol);
+        CHECK(worst < 0.2 * previous);
+        previous = worst;
+    }
+}
