@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
+#include "../solve/result.hpp"
 
 namespace frictionsim {
 
@@ -202,6 +203,14 @@ inline double friction_reduction(double mean_with_vibration, double mean_without
     detail::require_finite(who, "mean_without", mean_without);
     if (mean_without == 0.0) detail::reject(who, "mean_without", "non-zero", mean_without);
     return 1.0 - mean_with_vibration / mean_without;
+}
+
+/// Mean friction force of a simulation over whole cycles after a transient, from its running friction
+/// impulse (exact to solver tolerance where output times fall on the window ends, even across stick-slip jumps).
+inline double mean_friction_over_cycles(const Result& result, double period, double transient, int cycles = 0) {
+    const std::vector<double> impulse = result.column_values("friction_impulse");
+    const CycleWindow w = whole_cycle_window(result.t.front(), result.t.back(), period, transient, cycles);
+    return mean_from_integral(result.t, impulse, w.start, w.end);
 }
 
 }  // namespace frictionsim

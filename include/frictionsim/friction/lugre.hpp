@@ -18,6 +18,7 @@ public:
     static constexpr const char* name = "LuGre";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = false;
+    static constexpr bool stiff = true;  ///< bristle modes ~ sqrt(sigma0/m), z relaxation sigma0 |v| / g(v)
     static constexpr std::size_t state_count = 1;
     static constexpr std::array<const char*, 1> state_names{"bristle_deflection"};  ///< z, m
 

@@ -17,6 +17,7 @@
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
+#include "../solve/options.hpp"
 #include "contact_switching.hpp"
 
 namespace frictionsim {
@@ -47,6 +48,7 @@ class AxialRig {
 
 public:
     static constexpr std::size_t state_size = 2 + Z + 3;
+    static constexpr bool stiff = declares_stiff<Law>::value;  ///< picks the integrator under Method::automatic
     static constexpr std::size_t guard_count = Switching::guard_count;
     // state layout
     static constexpr std::size_t position = 0, velocity = 1, law_state = 2, friction_impulse = 2 + Z,

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "../detail/validate.hpp"
+#include "../solve/options.hpp"
 #include "contact_switching.hpp"
 #include "signals.hpp"
 
@@ -25,6 +26,7 @@ class KinematicRig {
 
 public:
     static constexpr std::size_t state_size = Z + 2;
+    static constexpr bool stiff = declares_stiff<Law>::value;  ///< picks the integrator under Method::automatic
     static constexpr std::size_t guard_count = branches ? 1 : 0;
     static constexpr std::size_t law_state = 0, friction_impulse = Z, friction_work = Z + 1;
 
@@ -89,7 +91,8 @@ public:
 private:
     double normal_force(double t) const {
         const double n = normal_(t);
-        if (!(n > 0.0)) detail::reject("KinematicRig", "normal_force", "positive at every time", n);
+        if (!(std::isfinite(n) && n > 0.0))
+            detail::reject("KinematicRig", "normal_force", "positive and finite at every time", n);
         return n;
     }
     double force(double v, double n, const double* x, int mode) const {

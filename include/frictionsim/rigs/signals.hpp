@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -39,14 +40,15 @@ struct HarmonicSlidingVelocity {
 /// [t_0, t_last] throws std::out_of_range: a simulation must not run past its data.
 class SampledSignal {
 public:
-    SampledSignal(std::vector<double> t, std::vector<double> y, const char* name = "signal")
-        : t_(std::move(t)), y_(std::move(y)), name_(name) {
+    SampledSignal(std::vector<double> t, std::vector<double> y, std::string name = "signal")
+        : t_(std::move(t)), y_(std::move(y)), name_(std::move(name)) {
+        const char* name_c = name_.c_str();
         if (t_.size() != y_.size())
-            detail::reject("SampledSignal", name, "as many values as times (values given)", double(y_.size()));
-        if (t_.size() < 2) detail::reject("SampledSignal", name, "at least 2 samples (given)", double(t_.size()));
+            detail::reject("SampledSignal", name_c, "as many values as times (values given)", double(y_.size()));
+        if (t_.size() < 2) detail::reject("SampledSignal", name_c, "at least 2 samples (given)", double(t_.size()));
         for (std::size_t i = 0; i < t_.size(); ++i) {
             detail::require_finite("SampledSignal", "time", t_[i]);
-            detail::require_finite("SampledSignal", name, y_[i]);
+            detail::require_finite("SampledSignal", name_c, y_[i]);
             if (i > 0 && !(t_[i] > t_[i - 1])) detail::reject("SampledSignal", "time", "strictly increasing", t_[i]);
         }
     }
@@ -68,7 +70,7 @@ public:
 
 private:
     std::vector<double> t_, y_;
-    const char* name_;
+    std::string name_;
 };
 
 }  // namespace frictionsim

@@ -90,19 +90,19 @@ bool zero_guards_triggering(const System& sys, double t, const double* x, int mo
     return any;
 }
 
-/// One integrator step; an exception from the model (a sampled signal run out, a law's own check) becomes a
+/// Runs f; an exception from the model (a sampled signal run out, a law's own check) becomes a
 /// SimulationError that says where the run stopped, so the caller keeps the results up to there.
-template <class Integrator>
-StepResult step_reporting_time(Integrator& integrator, double t_stop) {
+template <class F>
+auto reporting_time(double t, F&& f) -> decltype(f()) {
     try {
-        return integrator.step(t_stop);
+        return f();
     } catch (const SimulationError&) {
         throw;
     } catch (const std::exception& e) {
         std::ostringstream msg;
         msg.precision(17);
-        msg << "model evaluation failed after t = " << integrator.time() << " s: " << e.what();
-        throw SimulationError(msg.str(), integrator.time());
+        msg << "model evaluation failed after t = " << t << " s: " << e.what();
+        throw SimulationError(msg.str(), t);
     }
 }
 
@@ -135,8 +135,8 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
 
     const std::vector<double>& outputs = options.output_times;
     std::size_t next_output = 0;
-    int mode = sys.initial_mode(t0, x.data());
     Integrator<System> integrator(sys, options);
+    int mode = detail::reporting_time(t0, [&] { return sys.initial_mode(t0, x.data()); });
     detail::ChatteringGuard chattering(options);
     std::array<int, G> fired{};
     std::array<double, System::state_size> buffer{};
@@ -165,16 +165,18 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
         } while (detail::zero_guards_triggering(sys, t, x.data(), mode, fired));
     };
 
-    integrator.restart(t0, x.data(), mode);
-    while (next_output < outputs.size() && outputs[next_output] <= t0) {
-        observer.output(t0, x.data(), mode);
-        ++next_output;
-    }
-    if (options.record_steps && next_output == 0) observer.step(t0, x.data(), mode);
-    if (detail::zero_guards_triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
+    detail::reporting_time(t0, [&] {
+        integrator.restart(t0, x.data(), mode);
+        while (next_output < outputs.size() && outputs[next_output] <= t0) {
+            observer.output(t0, x.data(), mode);
+            ++next_output;
+        }
+        if (options.record_steps && next_output == 0) observer.step(t0, x.data(), mode);
+        if (detail::zero_guards_triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
+    });
 
     while (integrator.time() < t_end) {
-        const StepResult s = detail::step_reporting_time(integrator, t_end);
+        const StepResult s = detail::reporting_time(integrator.time(), [&] { return integrator.step(t_end); });
         while (next_output < outputs.size() && outputs[next_output] <= s.t) {
             integrator.interpolate(outputs[next_output], buffer.data());
             observer.output(outputs[next_output], buffer.data(), mode);
@@ -185,7 +187,7 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
             const double* xs = integrator.state();
             std::copy(xs, xs + System::state_size, x.begin());
             std::copy(integrator.roots(), integrator.roots() + G, fired.begin());
-            handle_switch(s.t);
+            detail::reporting_time(s.t, [&] { handle_switch(s.t); });
         }
     }
     HybridOutcome<System::state_size> out;

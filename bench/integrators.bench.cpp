@@ -1,0 +1,98 @@
+// Integrator choice, measured: each rig on each integrator at the same tolerance, with the solver's work as
+// counters beside the time. README "Choosing an integrator" quotes a run of this binary.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include <frictionsim/analysis/cycle_mean.hpp>
+#include <frictionsim/simulate.hpp>
+
+using namespace frictionsim;
+
+namespace {
+
+void report(benchmark::State& state, const Result& r, double value) {
+    state.counters["steps"] = static_cast<double>(r.stats.steps);
+    state.counters["rhs"] = static_cast<double>(r.stats.rhs_evaluations);
+    state.counters["jac"] = static_cast<double>(r.stats.jacobian_evaluations);
+    state.counters["events"] = static_cast<double>(r.events.size());
+    state.counters["value"] = value;  // the physical answer, so speed is never bought with a wrong one
+}
+
+/// Paper 000 axial rig with Dahl friction: m = 0.2 kg, k_d = 2e4 N/m, mu = 0.41, F_N = 90 N, k_t = 4e4 N/m,
+/// u0 = 5 mm, f = 17 Hz, v_d = 1 mm/s, 2 s from rest, mean friction over the last 10 whole cycles.
+void axial_dahl(benchmark::State& state, Method method, double rtol) {
+    AxialRig<Dahl> rig(AxialRigParams{}, Dahl(0.41, 4e4));
+    SolverOptions o;
+    o.method = method;
+    o.rtol = rtol;
+    o.atol = rtol * 1e-4;
+    const double t_end = 2.0, window = 10 * rig.period();
+    o.output_times = {t_end - window, t_end};
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, t_end, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    report(state, r, mean_friction_over_cycles(r, rig.period(), 0.0, 10));
+}
+
+/// Spring-block stick-slip with Coulomb static > kinetic friction: 20 s, ~8 stick-slip cycles.
+void coulomb_stick_slip(benchmark::State& state, Method method) {
+    AxialRigParams p;
+    p.mass = 0.5;
+    p.drive_stiffness = 200.0;
+    p.sliding_velocity = 0.05;
+    p.amplitude = 0.0;
+    p.normal_force = 0.5 * 9.81;
+    AxialRig<Coulomb> rig(p, Coulomb(0.4, 0.6));
+    SolverOptions o;
+    o.method = method;
+    o.rtol = 1e-8;
+    o.atol = 1e-12;
+    o.output_times = {20.0};
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, 20.0, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    report(state, r, r.state(0, 0));
+    state.counters["time_per_event"] =
+        benchmark::Counter(static_cast<double>(r.events.size()), benchmark::Counter::kIsIterationInvariantRate |
+                                                                     benchmark::Counter::kInvert);
+}
+
+/// LuGre stick-slip example of Canudas de Wit et al. 1995 (m = 1 kg, k = 2 N/m, 0.1 m/s), 20 s.
+void lugre_stick_slip(benchmark::State& state, Method method) {
+    AxialRigParams p;
+    p.mass = 1.0;
+    p.drive_stiffness = 2.0;
+    p.sliding_velocity = 0.1;
+    p.amplitude = 0.0;
+    p.normal_force = 1.0;
+    AxialRig<LuGre> rig(p, LuGre(LuGre::Params{}));
+    SolverOptions o;
+    o.method = method;
+    o.rtol = 1e-8;
+    o.atol = 1e-12;
+    o.output_times = {20.0};
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, 20.0, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    report(state, r, r.state(0, 1));
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(axial_dahl, dormand_prince_1e8, Method::dormand_prince, 1e-8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(axial_dahl, cvode_bdf_1e8, Method::cvode_bdf, 1e-8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(axial_dahl, cvode_adams_1e8, Method::cvode_adams, 1e-8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(coulomb_stick_slip, dormand_prince, Method::dormand_prince)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(coulomb_stick_slip, cvode_bdf, Method::cvode_bdf)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(coulomb_stick_slip, cvode_adams, Method::cvode_adams)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(lugre_stick_slip, dormand_prince, Method::dormand_prince)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(lugre_stick_slip, cvode_bdf, Method::cvode_bdf)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(lugre_stick_slip, cvode_adams, Method::cvode_adams)->Unit(benchmark::kMillisecond);

@@ -1,0 +1,435 @@
+// SUNDIALS CVODE behind the Integrator concept of solve/hybrid_system.hpp: BDF + dense Newton for stiff contact
+// laws, Adams + fixed point for smooth rigs. This folder is the only place that includes SUNDIALS headers.
+// Builds against SUNDIALS 6.4 (Debian bookworm) and 7.x.
+#pragma once
+
+#include <sundials/sundials_config.h>
+
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "../error.hpp"
+#include "../solve/hybrid_system.hpp"
+#include "../solve/options.hpp"
+#include "../solve/result.hpp"
+
+namespace frictionsim {
+namespace detail::cvode {
+
+/// Does S provide `void jacobian(double t, const double* x, int mode, double* J_column_major) const`?
+template <class S, class = void>
+struct has_jacobian : std::false_type {};
+template <class S>
+struct has_jacobian<S, std::void_t<decltype(std::declval<const S&>().jacobian(
+                           0.0, std::declval<const double*>(), 0, std::declval<double*>()))>> : std::true_type {};
+
+// One deleter per SUNDIALS handle type, so that every handle is owned by a std::unique_ptr.
+struct FreeContext { void operator()(SUNContext c) const { SUNContext_Free(&c); } };
+struct FreeVector { void operator()(N_Vector v) const { N_VDestroy(v); } };
+struct FreeMatrix { void operator()(SUNMatrix a) const { SUNMatDestroy(a); } };
+struct FreeLinearSolver { void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); } };
+struct FreeNonlinearSolver { void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); } };
+struct FreeMemory { void operator()(void* m) const { CVodeFree(&m); } };
+
+template <class Handle, class Free>
+using Owned = std::unique_ptr<std::remove_pointer_t<Handle>, Free>;
+
+inline std::string number(double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+
+/// SUNDIALS reports a failed constructor with a null handle.
+template <class P>
+P made(P handle, const char* what) {
+    if (!handle) throw SimulationError(std::string("CVODE: could not create ") + what, 0.0);
+    return handle;
+}
+
+}  // namespace detail::cvode
+
+/// CVODE driven one internal step at a time (CV_ONE_STEP with a stop time), restarted exactly at every switch.
+/// `system` must outlive the integrator. Movable, not copyable.
+template <class System>
+class Cvode {
+    static constexpr std::size_t n = System::state_size;
+    static constexpr std::size_t m = System::guard_count;
+    static_assert(n > 0, "Cvode: a system needs at least one state");
+
+public:
+    /// Throws InvalidParameter for invalid options or a method that is not a CVODE one.
+    Cvode(const System& system, const SolverOptions& options) : options_(options) {
+        namespace cv = detail::cvode;
+        options_.validate(n);
+        if (options_.method != Method::cvode_bdf && options_.method != Method::cvode_adams)
+            throw InvalidParameter("method", std::string("Cvode: method must be cvode_bdf or cvode_adams (got ") +
+                                                 method_name(options_.method) + ")");
+        SUNContext context = nullptr;
+#if SUNDIALS_VERSION_MAJOR >= 7
+        if (SUNContext_Create(SUN_COMM_NULL, &context) != 0) throw SimulationError("CVODE: no SUNContext", 0.0);
+#else
+        if (SUNContext_Create(nullptr, &context) != 0) throw SimulationError("CVODE: no SUNContext", 0.0);
+#endif
+        context_.reset(context);
+        shared_ = std::make_unique<Shared>();
+        shared_->system = &system;
+#if SUNDIALS_VERSION_MAJOR >= 7
+        // Replace the default handler (which prints to stderr) so that the message ends up in our exception.
+        SUNContext_ClearErrHandlers(context);
+        SUNContext_PushErrHandler(context, &Cvode::on_error, shared_.get());
+#endif
+        const auto size = static_cast<sunindextype>(n);
+        y_.reset(cv::made(N_VNew_Serial(size, context), "the state vector"));
+        dky_.reset(cv::made(N_VNewEmpty_Serial(size, context), "the dense-output vector"));
+        if (options_.method == Method::cvode_bdf) {
+            jacobian_.reset(cv::made(SUNDenseMatrix(size, size, context), "the dense matrix"));
+            linear_solver_.reset(cv::made(SUNLinSol_Dense(y_.get(), jacobian_.get(), context), "SUNLinSol_Dense"));
+        } else {
+            nonlinear_solver_.reset(
+                cv::made(SUNNonlinSol_FixedPoint(y_.get(), 0, context), "SUNNonlinSol_FixedPoint"));
+        }
+        memory_.reset(cv::made(CVodeCreate(options_.method == Method::cvode_bdf ? CV_BDF : CV_ADAMS, context),
+                               "the CVODE memory"));
+#if SUNDIALS_VERSION_MAJOR < 7
+        CVodeSetErrHandlerFn(memory_.get(), &Cvode::on_error, shared_.get());
+#endif
+    }
+
+    /// Exact restart at (t, x) in `mode`: CVODE forgets its history (CVodeInit the first time, CVodeReInit after).
+    void restart(double t, const double* x, int mode) {
+        std::copy(x, x + n, N_VGetArrayPointer(y_.get()));
+        std::copy(x, x + n, x_previous_.begin());
+        shared_->mode = mode;
+        if (!initialized_) {
+            initialize(t);
+        } else {
+            if (stepped_) done_ = stats();  // CVodeReInit zeroes CVODE's counters: bank them first
+            check(CVodeReInit(memory_.get(), t, y_.get()), "CVodeReInit", t);
+        }
+        ++done_.restarts;
+        if constexpr (m > 0) {
+            for (std::size_t i = 0; i < m; ++i) directions_[i] = shared_->system->guard_direction(i, mode);
+            check(CVodeSetRootDirection(memory_.get(), directions_.data()), "CVodeSetRootDirection", t);
+        }
+        roots_.fill(0);
+        t_ = t_previous_ = t;
+        stepped_ = false;
+    }
+
+    /// One internal CVODE step, cut at t_stop and at the first root of a guard. Throws SimulationError when
+    /// CVODE fails (the message names the cause) or when max_steps is used up.
+    StepResult step(double t_stop) {
+        if (!initialized_) throw std::logic_error("Cvode::step: call restart() first");
+        if (!(t_stop > t_))
+            throw std::invalid_argument("Cvode::step: t_stop = " + detail::cvode::number(t_stop) +
+                                        " must lie after time() = " + detail::cvode::number(t_));
+        void* memory = memory_.get();
+        // CVODE's own max_steps counts per CVode call, and each call here is a single step: count the run here.
+        if (total_steps() >= options_.max_steps)
+            throw SimulationError("CVODE: max_steps = " + std::to_string(options_.max_steps) +
+                                      " internal steps used up at t = " + detail::cvode::number(t_) +
+                                      " (raise SolverOptions::max_steps)",
+                                  t_);
+        // After a root CVODE stands at the end of the step that found it; a stop time before that is refused.
+        sunrealtype t_internal = t_;
+        CVodeGetCurrentTime(memory, &t_internal);
+        if (stepped_ && t_stop < t_internal)
+            throw std::logic_error("Cvode::step: after a root, restart() before stepping to t_stop = " +
+                                   detail::cvode::number(t_stop));
+        shared_->clear();
+        check(CVodeSetStopTime(memory, t_stop), "CVodeSetStopTime", t_);
+        const double* x = N_VGetArrayPointer(y_.get());
+        std::copy(x, x + n, x_previous_.begin());
+        sunrealtype t_returned = t_;
+        const int flag = CVode(memory, t_stop, y_.get(), &t_returned, CV_ONE_STEP);
+        stepped_ = true;
+        if (flag < 0) {
+            // CVODE left y at its internal time; go back to time(), the last time returned.
+            std::copy(x_previous_.begin(), x_previous_.end(), N_VGetArrayPointer(y_.get()));
+            fail(flag, nullptr);
+        }
+        const bool progress = t_returned > t_;
+        t_previous_ = t_;
+        t_ = t_returned;
+        // Some CVODE paths (6.x's fixed-point solver) retry after our "unrecoverable" -1; a throw is fatal anyway.
+        if (shared_->exception) fail(flag, "CVODE retried the step, but a throw is fatal");
+        // Steps shrinking onto a point where the system keeps failing end with t + h == t, forever.
+        if (!progress) fail(flag, "no progress (the step size underflowed: t + h == t)");
+        if (flag == CV_ROOT_RETURN) {
+            CVodeGetRootInfo(memory, roots_.data());
+            return {t_, true};
+        }
+        roots_.fill(0);
+        return {t_, false};
+    }
+
+    /// Dense output (CVODE's Nordsieck interpolant) on [previous_time(), time()]; the ends are returned exactly.
+    void interpolate(double t, double* x) const {
+        if (t == t_) {
+            std::copy(state(), state() + n, x);
+        } else if (t == t_previous_) {
+            std::copy(x_previous_.begin(), x_previous_.end(), x);
+        } else if (t > t_previous_ && t < t_) {
+            // Let CVODE write straight into x: dky_ owns no data, it only borrows x for this call.
+            N_VSetArrayPointer(x, dky_.get());
+            const int flag = CVodeGetDky(memory_.get(), t, 0, dky_.get());
+            if (flag < 0) throw std::logic_error("Cvode::interpolate: CVodeGetDky failed at t = " +
+                                                 detail::cvode::number(t));
+        } else {
+            throw std::out_of_range("Cvode::interpolate: t = " + detail::cvode::number(t) + " outside [" +
+                                    detail::cvode::number(t_previous_) + ", " + detail::cvode::number(t_) + "]");
+        }
+    }
+
+    double time() const { return t_; }
+    double previous_time() const { return t_previous_; }
+    const double* state() const { return N_VGetArrayPointer(y_.get()); }
+    /// After a root: +1 (rising) / -1 (falling) per guard that crossed, else 0.
+    const int* roots() const { return roots_.data(); }
+
+    /// Counters over the whole run, summed across restarts. rhs_evaluations include those of the
+    /// difference-quotient Jacobian; restarts counts every restart() call (as DormandPrince does); `events`
+    /// stays 0 (the event loop counts them).
+    SolverStats stats() const {
+        SolverStats s = done_;
+        if (!stepped_) return s;
+        void* memory = memory_.get();
+        const auto add = [memory](int (*get)(void*, long*), long& total) {
+            long value = 0;
+            if (get(memory, &value) >= 0) total += value;
+        };
+        add(&CVodeGetNumSteps, s.steps);
+        add(&CVodeGetNumRhsEvals, s.rhs_evaluations);
+        add(&CVodeGetNumGEvals, s.guard_evaluations);
+        add(&CVodeGetNumErrTestFails, s.error_test_failures);
+        if (options_.method == Method::cvode_bdf) {
+            add(&CVodeGetNumLinRhsEvals, s.rhs_evaluations);
+            add(&CVodeGetNumJacEvals, s.jacobian_evaluations);
+        }
+        return s;
+    }
+
+private:
+    /// What the C callbacks reach through user_data. On the heap, so that moving a Cvode keeps CVODE's pointer
+    /// valid.
+    struct Shared {
+        const System* system = nullptr;
+        int mode = 0;
+        std::exception_ptr exception;   // thrown by the system inside a callback, rethrown as text in fail()
+        const char* problem = nullptr;  // a non-finite value returned by the system
+        double problem_time = 0.0;
+        std::array<char, 512> message{};  // last message of CVODE's error handler (fixed buffer: no allocation)
+
+        void clear() {
+            exception = nullptr;
+            problem = nullptr;
+            message[0] = '\0';
+        }
+        void note(const char* what, double t) {
+            if (problem) return;  // keep the first one
+            problem = what;
+            problem_time = t;
+        }
+        void store(const char* function, const char* text) {
+            std::snprintf(message.data(), message.size(), "%s: %s", function ? function : "?", text ? text : "");
+        }
+    };
+
+    // C trampolines: no exception may cross into CVODE, so each one catches everything and returns -1
+    // (unrecoverable); step() then turns the stored exception into a SimulationError.
+    static int rhs(sunrealtype t, N_Vector x, N_Vector dxdt, void* data) noexcept {
+        auto& shared = *static_cast<Shared*>(data);
+        if (shared.exception) return -1;  // stay failed until step() reports it
+        try {
+            double* f = N_VGetArrayPointer(dxdt);
+            shared.system->rhs(t, N_VGetArrayPointer(x), shared.mode, f);
+            // NaN/Inf would poison the error test. Reporting it as recoverable makes CVODE retry with a smaller
+            // step (stiff laws can overflow on an overshooting trial step) and give up after a bounded number.
+            for (std::size_t i = 0; i < n; ++i) {
+                if (!std::isfinite(f[i])) {
+                    shared.note("the right-hand side returned a non-finite value", t);
+                    return 1;
+                }
+            }
+            return 0;
+        } catch (...) {
+            shared.exception = std::current_exception();
+            return -1;
+        }
+    }
+
+    static int guards(sunrealtype t, N_Vector x, sunrealtype* g, void* data) noexcept {
+        auto& shared = *static_cast<Shared*>(data);
+        if (shared.exception) return -1;
+        try {
+            shared.system->guards(t, N_VGetArrayPointer(x), shared.mode, g);
+            // A NaN guard would silently never cross zero, i.e. miss a switch.
+            for (std::size_t i = 0; i < m; ++i) {
+                if (!std::isfinite(g[i])) {
+                    shared.note("a guard returned a non-finite value", t);
+                    return -1;
+                }
+            }
+            return 0;
+        } catch (...) {
+            shared.exception = std::current_exception();
+            return -1;
+        }
+    }
+
+    // CVODE zeroes J before the call; the dense SUNMatrix stores its columns contiguously (column-major).
+    static int jacobian(sunrealtype t, N_Vector x, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector,
+                        N_Vector) noexcept {
+        auto& shared = *static_cast<Shared*>(data);
+        if (shared.exception) return -1;
+        try {
+            shared.system->jacobian(t, N_VGetArrayPointer(x), shared.mode, SUNDenseMatrix_Data(J));
+            return 0;
+        } catch (...) {
+            shared.exception = std::current_exception();
+            return -1;
+        }
+    }
+
+#if SUNDIALS_VERSION_MAJOR >= 7
+    static void on_error(int, const char* function, const char*, const char* message, SUNErrCode, void* data,
+                         SUNContext) noexcept {
+        static_cast<Shared*>(data)->store(function, message);
+    }
+#else
+    static void on_error(int, const char*, const char* function, char* message, void* data) noexcept {
+        static_cast<Shared*>(data)->store(function, message);
+    }
+#endif
+
+    void check(int flag, const char* call, double t) const {
+        if (flag < 0) {
+            const std::unique_ptr<char, void (*)(void*)> name(CVodeGetReturnFlagName(flag), &std::free);
+            throw SimulationError(std::string("CVODE: ") + call + " failed (" + (name ? name.get() : "?") +
+                                      "): " + shared_->message.data(),
+                                  t);
+        }
+    }
+
+    // CVodeInit must come before tolerances, solvers and root functions.
+    void initialize(double t) {
+        void* memory = memory_.get();
+        const SolverOptions& o = options_;
+        check(CVodeInit(memory, &Cvode::rhs, t, y_.get()), "CVodeInit", t);
+        check(CVodeSetUserData(memory, shared_.get()), "CVodeSetUserData", t);
+        if (o.atol_per_state.empty()) {
+            check(CVodeSStolerances(memory, o.rtol, o.atol), "CVodeSStolerances", t);
+        } else {
+            // CVODE copies the vector, so it need not outlive this call.
+            const detail::cvode::Owned<N_Vector, detail::cvode::FreeVector> atol(detail::cvode::made(
+                N_VNew_Serial(static_cast<sunindextype>(n), context_.get()), "the tolerance vector"));
+            std::copy(o.atol_per_state.begin(), o.atol_per_state.end(), N_VGetArrayPointer(atol.get()));
+            check(CVodeSVtolerances(memory, o.rtol, atol.get()), "CVodeSVtolerances", t);
+        }
+        check(CVodeSetMaxNumSteps(memory, o.max_steps), "CVodeSetMaxNumSteps", t);
+        if (std::isfinite(o.max_step)) check(CVodeSetMaxStep(memory, o.max_step), "CVodeSetMaxStep", t);
+        if (o.initial_step > 0.0) check(CVodeSetInitStep(memory, o.initial_step), "CVodeSetInitStep", t);
+        if (options_.method == Method::cvode_bdf) {
+            check(CVodeSetLinearSolver(memory, linear_solver_.get(), jacobian_.get()), "CVodeSetLinearSolver", t);
+            if constexpr (detail::cvode::has_jacobian<System>::value)
+                check(CVodeSetJacFn(memory, &Cvode::jacobian), "CVodeSetJacFn", t);
+        } else {
+            check(CVodeSetNonlinearSolver(memory, nonlinear_solver_.get()), "CVodeSetNonlinearSolver", t);
+        }
+        if constexpr (m > 0) {
+            check(CVodeRootInit(memory, static_cast<int>(m), &Cvode::guards), "CVodeRootInit", t);
+            // A guard exactly zero at a restart is normal here (we restart on the switching surface).
+            check(CVodeSetNoInactiveRootWarn(memory), "CVodeSetNoInactiveRootWarn", t);
+        }
+        initialized_ = true;
+    }
+
+    /// Throws the SimulationError for a failed step: CVode returned `flag` < 0, or `reason` says what else went
+    /// wrong. time() and state() are left at the last time returned, the last time the solution (guards
+    /// included) is valid; for failures inside a step that equals CVodeGetCurrentTime.
+    [[noreturn]] void fail(int flag, const char* reason) {
+        namespace cv = detail::cvode;
+        t_previous_ = t_;
+        std::copy(state(), state() + n, x_previous_.begin());
+        roots_.fill(0);
+
+        std::string what =
+            std::string("CVODE (") + method_name(options_.method) + ") failed at t = " + cv::number(t_);
+        if (shared_->exception) {
+            try {
+                std::rethrow_exception(shared_->exception);
+            } catch (const std::exception& e) {
+                what += std::string(": the system threw: ") + e.what();
+            } catch (...) {
+                what += ": the system threw a non-standard exception";
+            }
+        }
+        if (shared_->problem)
+            what += std::string(": ") + shared_->problem + " at t = " + cv::number(shared_->problem_time);
+        if (flag < 0) {
+            const std::unique_ptr<char, void (*)(void*)> name(CVodeGetReturnFlagName(flag), &std::free);
+            what += std::string(": ") + (name ? name.get() : "unknown CVODE flag");
+        }
+        if (reason) what += std::string(": ") + reason;
+        if (shared_->message[0] != '\0') what += std::string(" (CVODE: ") + shared_->message.data() + ")";
+        const std::exception_ptr original = shared_->exception;
+        shared_->clear();
+        if (original) {
+            // Keep the system's own exception reachable (std::rethrow_if_nested), e.g. an InvalidParameter.
+            try {
+                std::rethrow_exception(original);
+            } catch (...) {
+                std::throw_with_nested(SimulationError(what, t_));
+            }
+        }
+        throw SimulationError(what, t_);
+    }
+
+    long total_steps() const {
+        long steps = 0;
+        if (stepped_) CVodeGetNumSteps(memory_.get(), &steps);
+        return done_.steps + steps;
+    }
+
+    // Declaration order is destruction order reversed: the context goes last, the CVODE memory (which refers
+    // to the vectors and solvers) first.
+    detail::cvode::Owned<SUNContext, detail::cvode::FreeContext> context_;
+    std::unique_ptr<Shared> shared_;
+    detail::cvode::Owned<N_Vector, detail::cvode::FreeVector> y_;
+    detail::cvode::Owned<N_Vector, detail::cvode::FreeVector> dky_;
+    detail::cvode::Owned<SUNMatrix, detail::cvode::FreeMatrix> jacobian_;
+    detail::cvode::Owned<SUNLinearSolver, detail::cvode::FreeLinearSolver> linear_solver_;
+    detail::cvode::Owned<SUNNonlinearSolver, detail::cvode::FreeNonlinearSolver> nonlinear_solver_;
+    std::unique_ptr<void, detail::cvode::FreeMemory> memory_;
+
+    SolverOptions options_;
+    std::array<double, n> x_previous_{};  // state at previous_time(), for an exact left end of dense output
+    std::array<int, m> roots_{};
+    std::array<int, m> directions_{};  // CVodeSetRootDirection wants a mutable array
+    SolverStats done_{};               // counters banked before each CVodeReInit
+    double t_ = 0.0;
+    double t_previous_ = 0.0;
+    bool initialized_ = false;
+    bool stepped_ = false;  // CVode called since the last restart (CVODE resets its solver counters lazily)
+};
+
+}  // namespace frictionsim
