@@ -1,6 +1,9 @@
 // Cycle means: whole-cycle windows, trapezoid means of sampled signals, means from running integrals, and the
 // friction reduction; references are closed-form integrals.
 #include "catch.hpp"
+#include "rejection.hpp"
+
+#include <frictionsim/detail/constants.hpp>
 
 #include <cmath>
 #include <random>
@@ -13,7 +16,7 @@ using frictionsim::InvalidParameter;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using frictionsim::pi;
 
 std::vector<double> uniform_times(double t_end, std::size_t intervals) {
     std::vector<double> t(intervals + 1);
@@ -26,16 +29,6 @@ std::vector<double> sample(const std::vector<double>& t, F&& f) {
     std::vector<double> y(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) y[i] = f(t[i]);
     return y;
-}
-
-template <class F>
-std::string rejected_parameter(F&& f) {
-    try {
-        f();
-    } catch (const InvalidParameter& e) {
-        return e.parameter();
-    }
-    return "<nothing thrown>";
 }
 
 // Coulomb friction on a body sliding at v_d over a surface vibrating with velocity v_a sin(w t), per unit

@@ -1,5 +1,8 @@
 // HOT normal force (paper 000, eqs 1-4) against hand arithmetic and the textbook Hertz line contact.
 #include "catch.hpp"
+#include "rejection.hpp"
+
+#include <frictionsim/detail/constants.hpp>
 
 #include <cmath>
 #include <string>
@@ -11,7 +14,7 @@ using frictionsim::InvalidParameter;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using frictionsim::pi;
 
 // Round numbers whose results can be checked by hand.
 HydraulicOscillatorParams hand_params() {
@@ -63,26 +66,6 @@ TextbookLineContact textbook(double load_per_length, double r_cylinder, double r
     c.half_width = std::sqrt(4.0 * load_per_length * c.effective_radius / (pi * c.effective_modulus));
     c.peak_pressure = std::sqrt(load_per_length * c.effective_modulus / (pi * c.effective_radius));
     return c;
-}
-
-template <class F>
-std::string rejected_parameter(F&& f) {
-    try {
-        f();
-    } catch (const InvalidParameter& e) {
-        return e.parameter();
-    }
-    return "<nothing thrown>";
-}
-
-template <class F>
-std::string rejection_message(F&& f) {
-    try {
-        f();
-    } catch (const InvalidParameter& e) {
-        return e.what();
-    }
-    return "<nothing thrown>";
 }
 
 }  // namespace

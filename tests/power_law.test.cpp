@@ -1,5 +1,6 @@
 // Power-law dynamic friction coefficient (paper 000, eqs 15-17) against the paper's Table 5 and Table 4.
 #include "catch.hpp"
+#include "rejection.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,17 +14,7 @@ using frictionsim::PowerLawCoefficient;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-template <class F>
-std::string rejected_parameter(F&& f) {
-    try {
-        f();
-    } catch (const InvalidParameter& e) {
-        return e.parameter();
-    }
-    return "<nothing thrown>";
-}
+using frictionsim::pi;
 
 // Paper 000, Table 4, as printed: lubricant, amplitude u [mm], frequency f [Hz], sliding velocity v_d
 // [mm/min], normal force F_N [N], measured mean dynamic friction coefficient u_df = F_df / F_N.
