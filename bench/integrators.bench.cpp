@@ -40,13 +40,7 @@ void axial_dahl(benchmark::State& state, Method method, double rtol) {
 
 /// Spring-block stick-slip with Coulomb static > kinetic friction: 20 s, ~8 stick-slip cycles.
 void coulomb_stick_slip(benchmark::State& state, Method method) {
-    AxialRigParams p;
-    p.mass = 0.5;
-    p.drive_stiffness = 200.0;
-    p.sliding_velocity = 0.05;
-    p.amplitude = 0.0;
-    p.normal_force = 0.5 * 9.81;
-    AxialRig<Coulomb> rig(p, Coulomb(0.4, 0.6));
+    AxialRig<Coulomb> rig(spring_block_params(0.5, 200.0, 0.05), Coulomb(0.4, 0.6));
     SolverOptions o;
     o.method = method;
     o.rtol = 1e-8;
@@ -65,12 +59,7 @@ void coulomb_stick_slip(benchmark::State& state, Method method) {
 
 /// LuGre stick-slip example of Canudas de Wit et al. 1995 (m = 1 kg, k = 2 N/m, 0.1 m/s), 20 s.
 void lugre_stick_slip(benchmark::State& state, Method method) {
-    AxialRigParams p;
-    p.mass = 1.0;
-    p.drive_stiffness = 2.0;
-    p.sliding_velocity = 0.1;
-    p.amplitude = 0.0;
-    p.normal_force = 1.0;
+    const AxialRigParams p = canudas_de_wit_1995_params();
     AxialRig<LuGre> rig(p, LuGre(LuGre::Params{}));
     SolverOptions o;
     o.method = method;

@@ -1,4 +1,4 @@
-// Coulomb friction against analytic references: the friction-vector mean force of a body sliding on a
+// Coulomb friction, and the stick/slip switching of rigs/contact_switching.hpp, against analytic references: the friction-vector mean force of a body sliding on a
 // vibrating surface, and the stick-slip cycle of a spring-pulled block with static > kinetic friction.
 #include <cmath>
 #include <vector>
@@ -48,13 +48,7 @@ TEST_CASE("spring-block stick-slip with static > kinetic Coulomb friction matche
     // Block on a horizontal plane (no vibration), spring end pulled at v. Analytic steady cycle:
     // stick 2 (x_s - x_d) / v, slip (2 / lambda) (pi - atan(lambda (x_s - x_d) / v)).
     const double m = 0.5, k = 200.0, v = 0.05, g = 9.81, mu_s = 0.6, mu_k = 0.4;
-    AxialRigParams p;
-    p.mass = m;
-    p.drive_stiffness = k;
-    p.sliding_velocity = v;
-    p.amplitude = 0.0;
-    p.normal_force = m * g;
-    AxialRig<Coulomb> rig(p, Coulomb(mu_k, mu_s));
+    AxialRig<Coulomb> rig(spring_block_params(m, k, v, g), Coulomb(mu_k, mu_s));
 
     const double lambda = std::sqrt(k / m), x_s = mu_s * m * g / k, x_d = mu_k * m * g / k;
     const double stick_time = 2 * (x_s - x_d) / v;

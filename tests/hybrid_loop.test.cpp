@@ -1,4 +1,5 @@
-// The hybrid event loop on small systems whose switching behaviour is known exactly, on every integrator:
+// The hybrid event loop (solve/hybrid_loop.hpp) driving the HybridSystem concept (solve/hybrid_system.hpp)
+// into a Recorder (solve/recorder.hpp) on small systems whose switching behaviour is known exactly, on every integrator:
 // a guard that sits at zero right after a switch and heads into its triggering side, simultaneous switches,
 // a Zeno-prone bouncing ball that trips the chattering bound, and failures mid-run that keep the results.
 #include <array>

@@ -30,12 +30,7 @@ TEST_CASE("LuGre steady sliding force equals g(v) + sigma2 v", "[lugre][kinemati
 TEST_CASE("LuGre stick-slip example of Canudas de Wit et al. 1995", "[lugre][axial_rig][stick_slip]") {
     // m = 1 kg pulled through k = 2 N/m at 0.1 m/s; sigma0 = 1e5 N/m, sigma1 = sqrt(1e5) N s/m,
     // sigma2 = 0.4 N s/m, Fc = 1 N, Fs = 1.5 N, vs = 1 mm/s (their Fig. 6).
-    AxialRigParams p;
-    p.mass = 1.0;
-    p.drive_stiffness = 2.0;
-    p.sliding_velocity = 0.1;
-    p.amplitude = 0.0;
-    p.normal_force = 1.0;
+    const AxialRigParams p = canudas_de_wit_1995_params();
     AxialRig<LuGre> rig(p, LuGre(LuGre::Params{}));
     SolverOptions o;
     o.method = GENERATE(Method::cvode_bdf, Method::dormand_prince);
@@ -77,12 +72,7 @@ TEST_CASE("LuGre stick-slip example of Canudas de Wit et al. 1995", "[lugre][axi
 }
 
 TEST_CASE("LuGre with stiff bristles approaches Stribeck friction with exact stick", "[lugre][stribeck][axial_rig]") {
-    AxialRigParams p;
-    p.mass = 1.0;
-    p.drive_stiffness = 2.0;
-    p.sliding_velocity = 0.1;
-    p.amplitude = 0.0;
-    p.normal_force = 1.0;
+    const AxialRigParams p = canudas_de_wit_1995_params();
     Stribeck::Params sp;
     sp.coulomb_coefficient = 1.0;
     sp.static_coefficient = 1.5;

@@ -1,4 +1,4 @@
-// Stribeck friction: the curve itself, exact stick on a rig, and the Karnopp band converging to exact stick.
+// Stribeck friction (and the Karnopp band of rigs/contact_switching.hpp, set-ups of reference_setups.hpp): the curve itself, exact stick on a rig, and the Karnopp band converging to exact stick.
 #include <cmath>
 #include <vector>
 
@@ -9,15 +9,7 @@
 using namespace frictionsim;
 
 namespace {
-AxialRigParams spring_block() {
-    AxialRigParams p;
-    p.mass = 0.5;
-    p.drive_stiffness = 200.0;
-    p.sliding_velocity = 0.05;
-    p.amplitude = 0.0;
-    p.normal_force = 0.5 * 9.81;
-    return p;
-}
+AxialRigParams spring_block() { return spring_block_params(0.5, 200.0, 0.05); }
 }  // namespace
 
 TEST_CASE("Stribeck curve: static level at v -> 0, Coulomb level plus viscous at high speed", "[stribeck]") {

@@ -9,6 +9,7 @@
 #include "friction/stribeck.hpp"
 #include "rigs/axial_rig.hpp"
 #include "rigs/kinematic_rig.hpp"
+#include "rigs/reference_setups.hpp"
 #include "rigs/signals.hpp"
 #include "solve/dormand_prince.hpp"
 #include "solve/hybrid_loop.hpp"
