@@ -38,9 +38,9 @@ void axial_dahl(benchmark::State& state, Method method, double rtol) {
     report(state, r, mean_friction_over_cycles(r, rig.period(), 0.0, 10));
 }
 
-/// Spring-block stick-slip with Coulomb static > kinetic friction: 20 s, ~8 stick-slip cycles.
-void coulomb_stick_slip(benchmark::State& state, Method method) {
-    AxialRig<Coulomb> rig(spring_block_params(0.5, 200.0, 0.05), Coulomb(0.4, 0.6));
+/// A 20-s stick-slip run of `rig` at rtol 1e-8, timed per simulation.
+template <class Rig>
+Result run_stick_slip(benchmark::State& state, const Rig& rig, Method method) {
     SolverOptions o;
     o.method = method;
     o.rtol = 1e-8;
@@ -51,6 +51,13 @@ void coulomb_stick_slip(benchmark::State& state, Method method) {
         r = simulate(rig, 20.0, o);
         benchmark::DoNotOptimize(r.states.data());
     }
+    return r;
+}
+
+/// Spring-block stick-slip with Coulomb static > kinetic friction: 20 s, ~8 stick-slip cycles.
+void coulomb_stick_slip(benchmark::State& state, Method method) {
+    const Result r =
+        run_stick_slip(state, AxialRig<Coulomb>(spring_block_params(0.5, 200.0, 0.05), Coulomb(0.4, 0.6)), method);
     report(state, r, r.state(0, 0));
     state.counters["time_per_event"] =
         benchmark::Counter(static_cast<double>(r.events.size()), benchmark::Counter::kIsIterationInvariantRate |
@@ -59,18 +66,8 @@ void coulomb_stick_slip(benchmark::State& state, Method method) {
 
 /// LuGre stick-slip example of Canudas de Wit et al. 1995 (m = 1 kg, k = 2 N/m, 0.1 m/s), 20 s.
 void lugre_stick_slip(benchmark::State& state, Method method) {
-    const AxialRigParams p = canudas_de_wit_1995_params();
-    AxialRig<LuGre> rig(p, LuGre(LuGre::Params{}));
-    SolverOptions o;
-    o.method = method;
-    o.rtol = 1e-8;
-    o.atol = 1e-12;
-    o.output_times = {20.0};
-    Result r;
-    for (auto _ : state) {
-        r = simulate(rig, 20.0, o);
-        benchmark::DoNotOptimize(r.states.data());
-    }
+    const Result r =
+        run_stick_slip(state, AxialRig<LuGre>(canudas_de_wit_1995_params(), LuGre(LuGre::Params{})), method);
     report(state, r, r.state(0, 1));
 }
 
