@@ -6,8 +6,18 @@
 #                                         SUNDIALS::core, ... as aliases of whichever kind was built
 #
 # FRICTIONSIM_SUNDIALS_STATIC=ON requires the *_static targets (the Python extension links them so the wheel
-# carries no SUNDIALS shared library); OFF prefers *_shared, then the unsuffixed name, then *_static.
+# carries no SUNDIALS shared library); OFF prefers *_shared, then the unsuffixed name, then *_static; AUTO
+# is ON where SUNDIALS::cvode_static exists and OFF otherwise (what `pip install .` uses).
 function(frictionsim_sundials_libraries out_var)
+    set(FRICTIONSIM_SUNDIALS_STATIC ${FRICTIONSIM_SUNDIALS_STATIC})  # function-local copy, AUTO resolved
+    if(FRICTIONSIM_SUNDIALS_STATIC STREQUAL "AUTO")
+        if(TARGET SUNDIALS::cvode_static)
+            set(FRICTIONSIM_SUNDIALS_STATIC ON)
+        else()
+            set(FRICTIONSIM_SUNDIALS_STATIC OFF)
+        endif()
+        message(STATUS "frictionsim: FRICTIONSIM_SUNDIALS_STATIC=AUTO -> ${FRICTIONSIM_SUNDIALS_STATIC}")
+    endif()
     # cvode first: with static archives it resolves the symbols it also bundles (6.x ships the serial
     # N_Vector, dense matrix and solvers inside libsundials_cvode), so the later archives add nothing twice.
     set(_required cvode)

@@ -2,10 +2,13 @@
 // SUNDIALS is not included here: add <frictionsim/simulate.hpp> (CVODE + method dispatch) for that.
 #pragma once
 
+#include "analysis/cycle_mean.hpp"
+#include "contact/hydraulic_oscillator.hpp"
 #include "error.hpp"
 #include "friction/coulomb.hpp"
 #include "friction/dahl.hpp"
 #include "friction/lugre.hpp"
+#include "friction/power_law.hpp"
 #include "friction/stribeck.hpp"
 #include "rigs/axial_rig.hpp"
 #include "rigs/kinematic_rig.hpp"

@@ -1,0 +1,141 @@
+// The axial vibrating-sliding rig of paper 000 (eqs 5-9) for Python: any friction law, the paper's Fig. 7(a)
+// defaults, pickling for process pools, and simulate().
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "simulation.hpp"
+
+namespace frictionsim::python {
+
+namespace {
+
+template <class Law>
+using Axial = AxialRig<Law>;
+
+struct AxialVibrationRig {
+    FrictionLaw friction;
+    AxialRigParams params;
+    RigVariant<Axial> rig;
+
+    AxialVibrationRig(FrictionLaw law, const AxialRigParams& p)
+        : friction(law), params(p),
+          rig(std::visit([&](auto l) -> RigVariant<Axial> { return AxialRig<decltype(l)>(p, std::move(l)); }, law)) {}
+
+    template <class F>
+    decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), rig); }
+};
+
+AxialVibrationRig make_rig(py::handle friction, double mass, double drive_stiffness, double sliding_velocity,
+                           double amplitude, double frequency, double normal_force, bool gravity,
+                           double gravitational_acceleration, std::optional<double> initial_position,
+                           double initial_velocity) {
+    AxialRigParams p;
+    p.mass = mass;
+    p.drive_stiffness = drive_stiffness;
+    p.sliding_velocity = sliding_velocity;
+    p.amplitude = amplitude;
+    p.frequency = frequency;
+    p.normal_force = normal_force;
+    p.gravity = gravity;
+    p.gravitational_acceleration = gravitational_acceleration;
+    p.initial_position = initial_position;
+    p.initial_velocity = initial_velocity;
+    return AxialVibrationRig(friction_law_from_python(friction, "friction"), p);
+}
+
+}  // namespace
+
+void register_axial(py::module_& m) {
+    const AxialRigParams d;
+    py::class_<AxialVibrationRig>(m, "AxialVibrationRig", R"doc(
+The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
+k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:
+
+    m x'' = F_d - F_F - F_g,   F_d = k_d (v_d t - x),   v_r = x' - u0 w cos(w t).
+
+Defaults are the paper's Fig. 7(a) dry case (u0 = 5 mm, f = 17 Hz, v_d = 1 mm/s, F_N = 90 N; m = 0.2 kg,
+k_d = 2e4 N/m chosen, the paper gives no drive stiffness). SI units.
+
+States: position x [m], velocity x' [m/s], the law's state (dahl_deflection / bristle_deflection [m]),
+friction_impulse [N s], friction_work [J], drive_work [J] (drive work = energy change + friction work).
+
+Parameters
+----------
+friction : Coulomb | Stribeck | Dahl | LuGre
+mass : float            m [kg], > 0
+drive_stiffness : float k_d [N/m], > 0
+sliding_velocity : float v_d [m/s], >= 0
+amplitude : float       u0 [m], >= 0
+frequency : float       f [Hz], > 0
+normal_force : float    F_N [N], > 0
+gravity : bool          vertical rig: F_g = m g opposes the sliding
+gravitational_acceleration : float  g [m/s^2]
+initial_position : float, optional  x(0) [m]; default 0, or -m g / k_d with gravity (spring carries the weight)
+initial_velocity : float            x'(0) [m/s]
+)doc")
+        .def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("mass") = d.mass,
+             py::arg("drive_stiffness") = d.drive_stiffness, py::arg("sliding_velocity") = d.sliding_velocity,
+             py::arg("amplitude") = d.amplitude, py::arg("frequency") = d.frequency,
+             py::arg("normal_force") = d.normal_force, py::arg("gravity") = d.gravity,
+             py::arg("gravitational_acceleration") = d.gravitational_acceleration,
+             py::arg("initial_position") = py::none(), py::arg("initial_velocity") = d.initial_velocity)
+        .def_property_readonly("friction", [](const AxialVibrationRig& r) { return friction_law_to_python(r.friction); })
+        .def_property_readonly("mass", [](const AxialVibrationRig& r) { return r.params.mass; })
+        .def_property_readonly("drive_stiffness", [](const AxialVibrationRig& r) { return r.params.drive_stiffness; })
+        .def_property_readonly("sliding_velocity", [](const AxialVibrationRig& r) { return r.params.sliding_velocity; })
+        .def_property_readonly("amplitude", [](const AxialVibrationRig& r) { return r.params.amplitude; })
+        .def_property_readonly("frequency", [](const AxialVibrationRig& r) { return r.params.frequency; })
+        .def_property_readonly("normal_force", [](const AxialVibrationRig& r) { return r.params.normal_force; })
+        .def_property_readonly("gravity", [](const AxialVibrationRig& r) { return r.params.gravity; })
+        .def_property_readonly("gravitational_acceleration",
+                               [](const AxialVibrationRig& r) { return r.params.gravitational_acceleration; })
+        .def_property_readonly("initial_position", [](const AxialVibrationRig& r) { return r.params.initial_position; })
+        .def_property_readonly("initial_velocity", [](const AxialVibrationRig& r) { return r.params.initial_velocity; })
+        .def_property_readonly("period", [](const AxialVibrationRig& r) { return 1.0 / r.params.frequency; },
+                               "Vibration period 1/f [s].")
+        .def_property_readonly("vibration_velocity_amplitude",
+                               [](const AxialVibrationRig& r) { return r.visit([](const auto& s) { return s.vibration_velocity_amplitude(); }); },
+                               "v_a = 2 pi f u0 [m/s] (eq 16).")
+        .def_property_readonly("state_names", [](const AxialVibrationRig& r) {
+            return r.visit([](const auto& s) {
+                const auto names = s.state_names();
+                return std::vector<std::string>(names.begin(), names.end());
+            });
+        })
+        .def("drive_force", py::vectorize([](AxialVibrationRig& r, double t, double x) {
+                 return r.params.drive_stiffness * (r.params.sliding_velocity * t - x);
+             }),
+             py::arg("t"), py::arg("position"), "F_d = k_d (v_d t - x) [N] (eq 7).")
+        .def("surface_velocity", py::vectorize([](AxialVibrationRig& r, double t) {
+                 return r.visit([&](const auto& s) { return s.surface_velocity(t); });
+             }),
+             py::arg("t"), "Velocity of the vibrating surface u0 w cos(w t) [m/s].")
+        .def("_simulate", [](const AxialVibrationRig& r, double t_end, const SolverOptions& options, double t_start) {
+            return simulate_variant(r.rig, t_end, options, t_start);
+        })
+        .def(py::pickle(
+            [](const AxialVibrationRig& r) {
+                const AxialRigParams& p = r.params;
+                return py::make_tuple(friction_law_to_python(r.friction), p.mass, p.drive_stiffness, p.sliding_velocity,
+                                      p.amplitude, p.frequency, p.normal_force, p.gravity,
+                                      p.gravitational_acceleration, p.initial_position, p.initial_velocity);
+            },
+            [](const py::tuple& s) {
+                return make_rig(s[0], s[1].cast<double>(), s[2].cast<double>(), s[3].cast<double>(),
+                                s[4].cast<double>(), s[5].cast<double>(), s[6].cast<double>(), s[7].cast<bool>(),
+                                s[8].cast<double>(), s[9].cast<std::optional<double>>(), s[10].cast<double>());
+            }))
+        .def("__repr__", [](const AxialVibrationRig& r) {
+            const AxialRigParams& p = r.params;
+            return "AxialVibrationRig(friction=" + std::string(py::repr(friction_law_to_python(r.friction))) +
+                   ", mass=" + std::string(py::str(py::float_(p.mass))) +
+                   ", drive_stiffness=" + std::string(py::str(py::float_(p.drive_stiffness))) +
+                   ", sliding_velocity=" + std::string(py::str(py::float_(p.sliding_velocity))) +
+                   ", amplitude=" + std::string(py::str(py::float_(p.amplitude))) +
+                   ", frequency=" + std::string(py::str(py::float_(p.frequency))) +
+                   ", normal_force=" + std::string(py::str(py::float_(p.normal_force))) +
+                   ", gravity=" + (p.gravity ? "True" : "False") + ")";
+        });
+}
+
+}  // namespace frictionsim::python

@@ -1,0 +1,66 @@
+// Shared declarations of the _core extension: the friction-law variant the rigs are built on, the time signals
+// of the kinematic rig, and the register_* functions each translation unit defines.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <frictionsim/frictionsim.hpp>
+
+namespace frictionsim::python {
+
+namespace py = pybind11;
+
+/// Every instantaneous friction law a rig can run with. One variant alternative per law: the rigs are
+/// instantiated once per law, the right-hand side stays free of virtual calls.
+using FrictionLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre>;
+
+/// The Python object (a bound law) -> the variant; TypeError naming `parameter` for anything else.
+FrictionLaw friction_law_from_python(py::handle law, const char* parameter);
+py::object friction_law_to_python(const FrictionLaw& law);
+
+/// A prescribed signal of time for the kinematic rig: a constant, samples (piecewise linear), the paper's
+/// harmonic sliding velocity, or a Python callable (called with the GIL re-acquired). A switch per call
+/// instead of one rig instantiation per signal kind keeps the extension small.
+class Signal {
+public:
+    enum class Kind { constant, sampled, harmonic, callable };
+
+    static Signal constant(double value, const char* name);
+    static Signal sampled(std::vector<double> t, std::vector<double> y, const char* name);
+    static Signal harmonic(double sliding_velocity, double velocity_amplitude, double angular_frequency);
+    static Signal callable(py::object function, const char* name);
+    /// float -> constant, (t, y) pair of arrays -> sampled, callable -> callable; TypeError otherwise.
+    static Signal from_python(py::handle value, const char* name);
+
+    double operator()(double t) const;
+    Kind kind() const { return kind_; }
+    /// What from_python would rebuild this signal from (for pickling and repr).
+    py::object to_python() const;
+
+private:
+    Kind kind_ = Kind::constant;
+    std::string name_;
+    double value_ = 0.0;
+    std::shared_ptr<const SampledSignal> samples_;
+    std::vector<double> t_, y_;  // kept for to_python
+    std::optional<HarmonicSlidingVelocity> harmonic_;
+    std::shared_ptr<py::object> function_;
+};
+
+/// Rethrows InvalidParameter from a law's constructor with the Python keyword names (mu, mu_static).
+[[noreturn]] void rethrow_with_python_names(const InvalidParameter& e);
+
+void register_errors(py::module_& m);
+void register_laws(py::module_& m);
+void register_results(py::module_& m);
+void register_axial(py::module_& m);
+void register_kinematic(py::module_& m);
+void register_contact(py::module_& m);
+
+}  // namespace frictionsim::python

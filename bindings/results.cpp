@@ -1,0 +1,120 @@
+// Results, solver options and errors for Python. A Result's columns are copied once into NumPy arrays by the
+// Python wrapper (frictionsim.result.Result); C++ exceptions become the Python classes of frictionsim.errors,
+// SimulationError carrying the time reached and the partial result.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "common.hpp"
+
+namespace frictionsim::python {
+
+namespace {
+
+template <class T>
+py::array_t<T> to_array(const std::vector<T>& v) {
+    return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+py::object python_error(const char* name) { return py::module_::import("frictionsim.errors").attr(name); }
+
+void raise(const py::object& type, const py::object& instance) { PyErr_SetObject(type.ptr(), instance.ptr()); }
+
+py::object partial_result(const SimulationError& e) {
+    if (!e.partial()) return py::none();
+    return py::cast(std::const_pointer_cast<Result>(e.partial()));
+}
+
+}  // namespace
+
+void register_errors(py::module_&) {
+    // Order matters: the most derived C++ class first.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const ChatteringError& e) {
+            const py::object type = python_error("ChatteringError");
+            raise(type, type(e.what(), e.time_reached(), partial_result(e), e.switching_function()));
+        } catch (const SimulationError& e) {
+            const py::object type = python_error("SimulationError");
+            raise(type, type(e.what(), e.time_reached(), partial_result(e)));
+        } catch (const InvalidParameter& e) {
+            const py::object type = python_error("InvalidParameterError");
+            raise(type, type(e.what(), e.parameter()));
+        }
+    });
+}
+
+void register_results(py::module_& m) {
+    py::enum_<Method>(m, "Method", "Integrator of the hybrid event loop.")
+        .value("automatic", Method::automatic, "cvode_bdf for stiff laws (LuGre), dormand_prince otherwise")
+        .value("dormand_prince", Method::dormand_prince, "explicit RK5(4), dense output, root location")
+        .value("cvode_bdf", Method::cvode_bdf, "SUNDIALS CVODE BDF + Newton, dense linear solver")
+        .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point");
+
+    py::class_<SolverOptions>(m, "SolverOptions", "Options of simulate(); validated when the run starts.")
+        .def(py::init<>())
+        .def_readwrite("method", &SolverOptions::method)
+        .def_readwrite("rtol", &SolverOptions::rtol)
+        .def_readwrite("atol", &SolverOptions::atol)
+        .def_readwrite("atol_per_state", &SolverOptions::atol_per_state)
+        .def_readwrite("max_steps", &SolverOptions::max_steps)
+        .def_readwrite("max_step", &SolverOptions::max_step)
+        .def_readwrite("initial_step", &SolverOptions::initial_step)
+        .def_readwrite("output_times", &SolverOptions::output_times)
+        .def_readwrite("record_steps", &SolverOptions::record_steps)
+        .def_readwrite("max_events_in_window", &SolverOptions::max_events_in_window)
+        .def_readwrite("event_window", &SolverOptions::event_window);
+
+    py::class_<Event>(m, "Event", "One switch of the hybrid system (a stick-slip transition, a velocity reversal).")
+        .def_readonly("time", &Event::time, "t [s]")
+        .def_readonly("switching_function", &Event::switching_function, "index of the guard that fired")
+        .def_readonly("name", &Event::name, "name of the guard, e.g. 'relative_velocity'")
+        .def_readonly("mode_before", &Event::mode_before)
+        .def_readonly("mode_after", &Event::mode_after)
+        .def_readonly("mode_before_name", &Event::mode_before_name)
+        .def_readonly("mode_after_name", &Event::mode_after_name)
+        .def("__repr__", [](const Event& e) {
+            return "Event(time=" + std::string(py::str(py::float_(e.time))) + ", name='" + e.name + "', " +
+                   e.mode_before_name + " -> " + e.mode_after_name + ")";
+        });
+
+    py::class_<Result, std::shared_ptr<Result>>(m, "RawResult", "What the C++ engine recorded (see frictionsim.Result).")
+        .def_readonly("state_names", &Result::state_names)
+        .def_property_readonly("t", [](const Result& r) { return to_array(r.t); })
+        .def_property_readonly("states", [](const Result& r) {
+            py::array_t<double> a = to_array(r.states);
+            return a.reshape({static_cast<py::ssize_t>(r.rows()), static_cast<py::ssize_t>(r.state_count())});
+        })
+        .def_property_readonly("friction_force", [](const Result& r) { return to_array(r.friction_force); })
+        .def_property_readonly("mode", [](const Result& r) { return to_array(r.mode); })
+        .def_readonly("events", &Result::events)
+        .def_property_readonly("stats", [](const Result& r) {
+            const SolverStats& s = r.stats;
+            return py::dict(py::arg("steps") = s.steps, py::arg("rhs_evaluations") = s.rhs_evaluations,
+                            py::arg("jacobian_evaluations") = s.jacobian_evaluations,
+                            py::arg("guard_evaluations") = s.guard_evaluations,
+                            py::arg("error_test_failures") = s.error_test_failures,
+                            py::arg("restarts") = s.restarts, py::arg("events") = s.events);
+        })
+        .def_readonly("completed", &Result::completed)
+        .def_readonly("t_reached", &Result::t_reached);
+
+    // Cycle means (analysis/cycle_mean.hpp): one implementation for C++ and Python.
+    m.def("whole_cycle_window", [](double t_first, double t_last, double period, double transient, int cycles) {
+        const CycleWindow w = whole_cycle_window(t_first, t_last, period, transient, cycles);
+        return py::make_tuple(w.start, w.end, w.cycles);
+    }, py::arg("t_first"), py::arg("t_last"), py::arg("period"), py::arg("transient") = 0.0, py::arg("cycles") = 0,
+          "(t_a, t_b, cycles): whole cycles of `period` [s] after `transient` [s]; cycles <= 0 takes all that fit.");
+    m.def("mean_from_integral", py::overload_cast<const std::vector<double>&, const std::vector<double>&, double, double>(
+              &mean_from_integral), py::arg("t"), py::arg("running_integral"), py::arg("t_a"), py::arg("t_b"),
+          "(Y(t_b) - Y(t_a)) / (t_b - t_a): the mean of dY/dt from its running integral Y (linear between samples).");
+    m.def("mean_over_cycles", py::overload_cast<const std::vector<double>&, const std::vector<double>&, double,
+                                                double, int>(&mean_over_cycles),
+          py::arg("t"), py::arg("y"), py::arg("period"), py::arg("transient") = 0.0, py::arg("cycles") = 0,
+          "Mean of sampled y(t) over whole cycles after a transient (trapezoid rule on the samples).");
+    m.def("mean_over_window", py::overload_cast<const std::vector<double>&, const std::vector<double>&, double, double>(
+              &mean_over_window), py::arg("t"), py::arg("y"), py::arg("t_a"), py::arg("t_b"),
+          "Mean of sampled y(t) over [t_a, t_b] (trapezoid rule, interpolated window ends).");
+}
+
+}  // namespace frictionsim::python

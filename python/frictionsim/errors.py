@@ -1,0 +1,60 @@
+"""Exceptions raised by frictionsim.
+
+The C++ engine's exceptions arrive as these classes (translated in bindings/results.cpp):
+
+* :class:`InvalidParameterError` (a :class:`ValueError`): bad input; ``parameter`` names it.
+* :class:`SimulationError`: the integration stopped before ``t_end``; ``time_reached`` [s] is the last time the
+  solution is valid and ``partial`` holds the :class:`frictionsim.Result` recorded up to it.
+* :class:`ChatteringError`: more switches than the chattering bound allows (Zeno behaviour);
+  ``switching_function`` names the guard.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+__all__ = ["InvalidParameterError", "SimulationError", "ChatteringError"]
+
+
+class InvalidParameterError(ValueError):
+    """A parameter breaks a physical rule; ``parameter`` names it and the message states the rule."""
+
+    def __init__(self, message: str, parameter: str) -> None:
+        super().__init__(message)
+        self.parameter = parameter
+
+    def __reduce__(self):  # picklable, so errors cross process pools intact
+        return (type(self), (str(self), self.parameter))
+
+
+class SimulationError(RuntimeError):
+    """The run stopped early. ``time_reached`` [s]; ``partial`` is the Result up to it (or None)."""
+
+    def __init__(self, message: str, time_reached: float, partial: Any = None) -> None:
+        super().__init__(message)
+        self.time_reached = float(time_reached)
+        self._partial = partial
+
+    @property
+    def partial(self) -> Optional["Result"]:  # noqa: F821 - forward reference
+        """The results recorded up to ``time_reached`` as a :class:`frictionsim.Result`, or None."""
+        from .result import Result
+
+        if self._partial is None or isinstance(self._partial, Result):
+            return self._partial
+        self._partial = Result(self._partial)
+        return self._partial
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.time_reached, self.partial))
+
+
+class ChatteringError(SimulationError):
+    """Too many switches within the event window; ``switching_function`` names the guard."""
+
+    def __init__(self, message: str, time_reached: float, partial: Any = None, switching_function: str = "") -> None:
+        super().__init__(message, time_reached, partial)
+        self.switching_function = switching_function
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.time_reached, self.partial, self.switching_function))
