@@ -1,0 +1,1 @@
+from .power_law import PowerLawFit, fit_power_law
