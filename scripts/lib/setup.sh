@@ -3,16 +3,20 @@
 #   frictionsim_install_deps   install the Debian packages that are missing (apt-get; sudo when not root)
 #   frictionsim_configure      configure $FRICTIONSIM_BUILD_DIR (default build/, Release, Ninja if available)
 #   frictionsim_build [target] build everything, or one target
+#   frictionsim_python_setup   create the project venv ($FRICTIONSIM_VENV, default .venv) and pip install the
+#                              package with its test extras (builds the _core extension; PyPI only)
 #
 # Environment: FRICTIONSIM_BUILD_DIR (default <repo>/build), FRICTIONSIM_CMAKE_ARGS (extra cmake arguments,
-# split on spaces, e.g. "-DFRICTIONSIM_SANITIZE=ON"), FRICTIONSIM_SKIP_DEPS=1 (do not touch packages).
+# split on spaces, e.g. "-DFRICTIONSIM_SANITIZE=ON"), FRICTIONSIM_SKIP_DEPS=1 (do not touch packages),
+# FRICTIONSIM_VENV (the Python virtual environment, default <repo>/.venv).
 
 FRICTIONSIM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 FRICTIONSIM_BUILD_DIR="${FRICTIONSIM_BUILD_DIR:-$FRICTIONSIM_ROOT/build}"
 FRICTIONSIM_JOBS="$(nproc 2>/dev/null || echo 2)"
+FRICTIONSIM_VENV="${FRICTIONSIM_VENV:-$FRICTIONSIM_ROOT/.venv}"
 
 # Everything scripts/test and scripts/demo need on Debian bookworm.
-FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ libsundials-dev libeigen3-dev catch2 libbenchmark-dev python3-venv)
+FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ libsundials-dev libeigen3-dev catch2 libbenchmark-dev python3-venv python3-dev)
 
 frictionsim_log() { printf '\n==> %s\n' "$*" >&2; }
 
@@ -70,4 +74,17 @@ frictionsim_build() {
     if (($# > 0)); then target=(--target "$@"); fi
     frictionsim_log "building ${*:-all} ($FRICTIONSIM_JOBS jobs)"
     cmake --build "$FRICTIONSIM_BUILD_DIR" --parallel "$FRICTIONSIM_JOBS" "${target[@]}"
+}
+
+frictionsim_python_setup() {
+    local python="${FRICTIONSIM_PYTHON:-python3}"
+    if [[ ! -x "$FRICTIONSIM_VENV/bin/python" ]]; then
+        frictionsim_log "creating venv $FRICTIONSIM_VENV"
+        "$python" -m venv "$FRICTIONSIM_VENV"
+    fi
+    frictionsim_log "pip install .[test] into $FRICTIONSIM_VENV (builds frictionsim._core)"
+    "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --upgrade pip
+    # CMAKE_BUILD_PARALLEL_LEVEL: scikit-build-core's build uses both cores like the C++ build
+    CMAKE_BUILD_PARALLEL_LEVEL="$FRICTIONSIM_JOBS" \
+        "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet "$FRICTIONSIM_ROOT[test]"
 }
