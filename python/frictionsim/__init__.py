@@ -24,6 +24,7 @@ from ._core import (
 from .errors import ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
 from .simulation import METHODS, simulate
+from .sweep import SweepResult, sweep
 
 __version__ = "0.1.0"
 
@@ -46,6 +47,8 @@ __all__ = [
     "SimulationError",
     "Stribeck",
     "simulate",
+    "sweep",
+    "SweepResult",
     "table5",
     "vibration_velocity_amplitude",
 ]
@@ -55,8 +58,6 @@ def __getattr__(name: str):
     # Submodules with heavier imports (pandas, scipy, matplotlib, PyEMD, dask) load on first use: fs.fit, ...
     import importlib
 
-    if name in ("contact", "data", "fit", "signal", "sweep_module", "plots", "scenario", "cli"):
+    if name in ("contact", "data", "fit", "signal", "plots", "scenario", "cli"):
         return importlib.import_module(f".{name}", __name__)
-    if name == "sweep":
-        return importlib.import_module(".sweep", __name__).sweep
     raise AttributeError(f"module 'frictionsim' has no attribute {name!r}")

@@ -1,0 +1,416 @@
+"""Parameter sweeps: run one function over a grid of parameters on any executor, with a progress bar.
+
+The same call scales from a laptop to a cluster, because the work is handed to a standard
+:class:`concurrent.futures.Executor`::
+
+    >>> import frictionsim as fs
+    >>> from frictionsim.sweep import axial_mean_friction
+    >>> grid = {"amplitude": [1e-3, 3e-3, 5e-3], "frequency": [10.0, 17.0, 25.0]}   # m, Hz
+    >>> result = fs.sweep(axial_mean_friction, grid, fixed={"friction": fs.Dahl(0.41, 4e4)})
+    >>> result.as_array()           # F_df [N] on the 3 x 3 (amplitude, frequency) grid
+    >>> result.to_pandas()          # one row per point
+
+* ``executor=None`` runs serially in this process;
+* a :class:`~concurrent.futures.ThreadPoolExecutor` runs simulations truly in parallel (the engine releases
+  the GIL while integrating);
+* a :class:`~concurrent.futures.ProcessPoolExecutor` needs a picklable, top-level ``function`` (rigs, friction
+  laws, results and frictionsim's exceptions all pickle);
+* a ``dask.distributed.Client`` is accepted directly: the sweep runs on ``client.get_executor(pure=False)``,
+  the concurrent.futures interface of the cluster (``pure=False``: every point is computed, never merged with
+  another task that dask would hash as equal).
+
+The points are run in a deterministic order and the values are stored in grid order whatever order they
+finish in, so a sweep gives bit-for-bit the same values on every executor. The ready-made functions
+:func:`axial_mean_friction` and :func:`kinematic_mean_friction` simulate one rig and return its mean friction
+force over whole vibration cycles (F_df of paper 000), e.g. for the friction-reduction map of paper 000 over
+vibration amplitude and frequency.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import itertools
+import math
+import time
+import traceback
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple, Union
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+__all__ = [
+    "SweepError",
+    "SweepResult",
+    "axial_mean_friction",
+    "grid_points",
+    "kinematic_mean_friction",
+    "sweep",
+]
+
+Grid = Union[Mapping, Iterable[Mapping]]
+
+_ERROR_MODES = ("raise", "collect")
+
+
+class SweepError(RuntimeError):
+    """A point of a sweep failed (``errors="raise"``).
+
+    ``point`` is the failing point's parameters (dict), ``index`` its position in grid order, ``error`` the
+    original exception (also the ``__cause__``), and ``remote_traceback`` its traceback as text when it was
+    raised in another thread, process or machine.
+    """
+
+    def __init__(self, message: str, index: int, point: Dict[str, Any], error: BaseException,
+                 remote_traceback: str = "") -> None:
+        super().__init__(message)
+        self.index = index
+        self.point = point
+        self.error = error
+        self.remote_traceback = remote_traceback
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.index, self.point, self.error, self.remote_traceback))
+
+
+def _reject(parameter: str, rule: str, value: object) -> None:
+    raise InvalidParameterError(f"sweep: {parameter} must be {rule} (got {value!r})", parameter)
+
+
+# ---------------------------------------------------------------------------------------------- the grid
+def grid_points(grid: Grid) -> Tuple[List[Dict[str, Any]], List[str], Optional[Tuple[int, ...]]]:
+    """Expand ``grid`` into ``(points, parameters, grid_shape)``.
+
+    A mapping ``name -> sequence of values`` gives the full Cartesian product in C order (the last name varies
+    fastest), with ``grid_shape`` = the lengths of the sequences. A sequence of mappings gives those points as
+    they are, with ``grid_shape`` None. ``parameters`` lists the names in order of first appearance.
+
+    Raises :class:`frictionsim.InvalidParameterError` (a ValueError) naming the bad entry.
+    """
+    if isinstance(grid, Mapping):
+        if not grid:
+            _reject("grid", "a non-empty mapping name -> sequence of values, or a non-empty sequence of dicts",
+                    grid)
+        axes: Dict[str, List[Any]] = {}
+        for name, values in grid.items():
+            _check_name(name, "grid")
+            label = f"grid[{name!r}]"
+            if hasattr(values, "tolist") and not isinstance(values, (str, bytes)):  # NumPy array, pandas Series
+                array = np.asarray(values)
+                if array.ndim != 1:
+                    _reject(label, "a 1-D sequence of values", f"array of shape {array.shape}")
+                values = array.tolist()  # Python scalars: plain floats in the points and the DataFrame
+            elif isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
+                _reject(label, "a sequence of values (list, tuple, range or 1-D array)", values)
+            if len(values) == 0:
+                _reject(label, "a non-empty sequence of values", values)
+            axes[name] = list(values)
+        names = list(axes)
+        points = [dict(zip(names, combination)) for combination in itertools.product(*axes.values())]
+        return points, names, tuple(len(v) for v in axes.values())
+
+    if isinstance(grid, (str, bytes)) or not isinstance(grid, Iterable):
+        _reject("grid", "a mapping name -> sequence of values, or a sequence of dicts", grid)
+    points = []
+    names = []
+    for i, point in enumerate(grid):
+        if not isinstance(point, Mapping):
+            _reject(f"grid[{i}]", "a dict of parameters", point)
+        for name in point:
+            _check_name(name, f"grid[{i}]")
+            if name not in names:
+                names.append(name)
+        points.append(dict(point))
+    if not points:
+        _reject("grid", "a non-empty mapping name -> sequence of values, or a non-empty sequence of dicts", grid)
+    return points, names, None
+
+
+def _check_name(name: object, where: str) -> None:
+    if not isinstance(name, str) or not name:
+        _reject(where, "keyed by parameter names (non-empty str)", name)
+
+
+# ---------------------------------------------------------------------------------------------- running
+class _RemoteTraceback(Exception):
+    """Carries the text of a traceback raised in another thread, process or machine (as concurrent.futures does)."""
+
+    def __str__(self) -> str:
+        return self.args[0]
+
+
+@dataclass
+class _Failure:
+    """An exception raised by ``function`` at one point, with its traceback as text (tracebacks don't pickle)."""
+
+    error: BaseException
+    traceback: str
+
+
+def _run_chunk(function: Callable[..., Any], fixed: Dict[str, Any], points: List[Dict[str, Any]]) -> List[Any]:
+    """Run ``function(**fixed, **point)`` for each point; an exception becomes a _Failure (the others still run)."""
+    out: List[Any] = []
+    for point in points:
+        try:
+            out.append(function(**fixed, **point))
+        except Exception as error:  # noqa: BLE001 - reported per point by sweep()
+            out.append(_Failure(error, traceback.format_exc()))
+    return out
+
+
+def _as_executor(executor: Any) -> Optional[cf.Executor]:
+    if executor is None or isinstance(executor, cf.Executor):
+        return executor
+    if callable(getattr(executor, "get_executor", None)):  # dask.distributed.Client (duck-typed: dask is optional)
+        return executor.get_executor(pure=False)
+    raise TypeError("executor must be None, a concurrent.futures.Executor or a dask.distributed.Client, "
+                    f"got {type(executor).__name__}")
+
+
+def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[str, Any]] = None,
+          executor: Any = None, progress: bool = True, errors: str = "raise", chunksize: int = 1,
+          description: Optional[str] = None) -> "SweepResult":
+    """Evaluate ``function(**fixed, **point)`` at every point of ``grid``.
+
+    Parameters
+    ----------
+    function : callable
+        Called with keyword arguments only; returns anything, typically a float (e.g. a mean friction force
+        [N]) or a dict of floats. For a ProcessPoolExecutor or a dask cluster it must pickle (a top-level
+        function such as :func:`axial_mean_friction`; :func:`functools.partial` of one also works).
+    grid : mapping or sequence of dicts
+        ``{"amplitude": [...], "frequency": [...]}``: the full Cartesian product, last name varying fastest
+        (C order, so :meth:`SweepResult.as_array` reshapes to ``grid_shape``). Or a sequence of dicts: those
+        explicit points, in order.
+    fixed : mapping, optional
+        Keyword arguments passed unchanged to every call (e.g. ``friction``, ``t_end``); they must not repeat a
+        grid name.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where to run the points; None runs them serially in this process. The executor is used, not shut down.
+    progress : bool
+        Show a tqdm progress bar, advanced as points complete.
+    errors : {"raise", "collect"}
+        "raise": the first failing point (in completion order) cancels the outstanding work and raises
+        :class:`SweepError` naming the point, from the original exception. "collect": every point runs; a
+        failing point's value is its exception (see :attr:`SweepResult.failed`).
+    chunksize : int
+        Points per submitted task; more than 1 cuts the per-task overhead of process pools and clusters for
+        very short runs. Results are the same.
+    description : str, optional
+        Label of the progress bar.
+
+    Returns
+    -------
+    SweepResult
+        The points and their values, both in grid order.
+
+    Raises
+    ------
+    InvalidParameterError (ValueError)
+        Empty grid, a grid entry that is not a sequence, a ``fixed`` name repeated in the grid, a bad
+        ``errors`` or ``chunksize``; ``.parameter`` names it.
+    SweepError
+        A point failed and ``errors="raise"``.
+    """
+    if not callable(function):
+        raise TypeError(f"function must be callable, got {type(function).__name__}")
+    if errors not in _ERROR_MODES:
+        _reject("errors", "'raise' or 'collect'", errors)
+    if isinstance(chunksize, bool) or not isinstance(chunksize, (int, np.integer)) or chunksize < 1:
+        _reject("chunksize", "a positive integer", chunksize)
+    fixed = dict(fixed or {})
+    for name in fixed:
+        _check_name(name, "fixed")
+    points, parameters, grid_shape = grid_points(grid)
+    clashes = [name for name in parameters if name in fixed]
+    if clashes:
+        _reject("fixed", f"free of the grid's parameter names ({', '.join(clashes)})", sorted(fixed))
+    pool = _as_executor(executor)
+
+    from tqdm.auto import tqdm
+
+    chunks = [list(range(start, min(start + int(chunksize), len(points))))
+              for start in range(0, len(points), int(chunksize))]
+    values: List[Any] = [None] * len(points)
+    started = time.perf_counter()
+    with tqdm(total=len(points), disable=not progress, desc=description or _name(function), unit="pt") as bar:
+
+        def store(indices: List[int], outcome: List[Any]) -> None:
+            for i, value in zip(indices, outcome):
+                if isinstance(value, _Failure) and errors == "raise":
+                    if value.error.__traceback__ is None and value.error.__cause__ is None and value.traceback:
+                        value.error.__cause__ = _RemoteTraceback("\n" + value.traceback)  # shown in the chain
+                    raise SweepError(
+                        f"sweep point {i} {_describe(points[i])} failed: {type(value.error).__name__}: "
+                        f"{value.error}", i, points[i], value.error, value.traceback) from value.error
+                values[i] = value.error if isinstance(value, _Failure) else value
+            bar.update(len(indices))
+
+        if pool is None:
+            for indices in chunks:
+                store(indices, _run_chunk(function, fixed, [points[i] for i in indices]))
+        else:
+            futures = {pool.submit(_run_chunk, function, fixed, [points[i] for i in indices]): indices
+                       for indices in chunks}
+            try:
+                for future in cf.as_completed(futures):
+                    indices = futures[future]
+                    try:
+                        outcome = future.result()
+                    except Exception as error:  # the task itself failed: unpicklable function, broken pool...
+                        outcome = [_Failure(error, "".join(traceback.format_exception(
+                            type(error), error, error.__traceback__)))] * len(indices)
+                    store(indices, outcome)
+            finally:  # on an error (or Ctrl-C) cancel what has not started; no-op when all are done
+                for future in futures:
+                    future.cancel()
+    return SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
+                       elapsed=time.perf_counter() - started)
+
+
+def _name(function: Callable[..., Any]) -> str:
+    inner = getattr(function, "func", function)  # functools.partial
+    return getattr(inner, "__name__", type(inner).__name__)
+
+
+def _describe(point: Dict[str, Any]) -> str:
+    return "(" + ", ".join(f"{name}={value!r}" for name, value in point.items()) + ")"
+
+
+# ---------------------------------------------------------------------------------------------- the result
+@dataclass
+class SweepResult:
+    """Points and values of a :func:`sweep`, both in grid order.
+
+    Attributes
+    ----------
+    points : list of dict
+        The parameters of each point (without ``fixed``).
+    values : list
+        ``function``'s return value at each point; with ``errors="collect"``, the exception for a failed point.
+    parameters : list of str
+        The grid's parameter names.
+    grid_shape : tuple of int or None
+        The lengths of the grid's axes for a Cartesian grid, else None.
+    elapsed : float, s
+        Wall-clock time of the sweep.
+    """
+
+    points: List[Dict[str, Any]]
+    values: List[Any]
+    parameters: List[str]
+    grid_shape: Optional[Tuple[int, ...]] = None
+    elapsed: float = field(default=0.0, compare=False)
+
+    def __len__(self) -> int:
+        return len(self.points)
+
+    def __iter__(self):
+        """Iterate over ``(point, value)`` pairs."""
+        return iter(zip(self.points, self.values))
+
+    def __repr__(self) -> str:
+        shape = "x".join(map(str, self.grid_shape)) if self.grid_shape else "explicit"
+        return (f"SweepResult({len(self)} points over {self.parameters} ({shape}), {len(self.failed)} failed, "
+                f"{self.elapsed:.3g} s)")
+
+    @property
+    def failed(self) -> List[int]:
+        """Indices of the points whose value is an exception (``errors="collect"``)."""
+        return [i for i, value in enumerate(self.values) if isinstance(value, BaseException)]
+
+    @property
+    def axes(self) -> Optional[Dict[str, List[Any]]]:
+        """The values along each axis of a Cartesian grid (name -> list), or None for explicit points."""
+        if self.grid_shape is None:
+            return None
+        strides = np.cumprod((self.grid_shape[1:] + (1,))[::-1])[::-1]  # C-order stride of each axis
+        return {name: [self.points[k * int(stride)][name] for k in range(n)]
+                for name, n, stride in zip(self.parameters, self.grid_shape, strides)}
+
+    def as_array(self, key: Optional[str] = None) -> np.ndarray:
+        """The values as a float array of shape ``grid_shape`` (NaN where a point failed).
+
+        ``key`` picks one entry of dict values (required when the values are dicts).
+        """
+        if self.grid_shape is None:
+            raise ValueError("as_array: the sweep ran over explicit points, not a Cartesian grid; use to_pandas()")
+        flat = np.empty(len(self.values))
+        for i, value in enumerate(self.values):
+            if isinstance(value, BaseException):
+                flat[i] = math.nan
+                continue
+            if isinstance(value, Mapping):
+                if key is None:
+                    raise ValueError(f"key: the values are dicts; pass one of {sorted(value)}")
+                value = value[key]
+            elif key is not None:
+                raise ValueError(f"key: the values are not dicts (got {type(value).__name__}); omit key")
+            flat[i] = float(value)
+        return flat.reshape(self.grid_shape)
+
+    def to_pandas(self):
+        """A pandas DataFrame, one row per point: the parameters, then the value.
+
+        A scalar (or any non-dict) value goes to column "value"; a dict value expands to one column per key
+        (a key equal to a parameter name becomes "value.<key>"). With failed points, an "error" column holds
+        ``"Type: message"`` (None elsewhere) and their value columns are NaN.
+        """
+        import pandas as pd
+
+        rows = []
+        for point, value in self:
+            row = dict(point)
+            if isinstance(value, BaseException):
+                row["error"] = f"{type(value).__name__}: {value}"
+            elif isinstance(value, Mapping):
+                row.update({(f"value.{k}" if k in point else k): v for k, v in value.items()})
+            else:
+                row["value"] = value
+            rows.append(row)
+        frame = pd.DataFrame(rows)
+        values = [c for c in frame.columns if c not in self.parameters and c != "error"]
+        frame = frame[self.parameters + values + (["error"] if "error" in frame else [])]
+        if "error" in frame:
+            frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
+        return frame
+
+
+# ---------------------------------------------------------------------------------------------- ready-made functions
+def axial_mean_friction(*, friction: Any, t_end: float = 2.0, transient: float = 1.0, method: str = "automatic",
+                        rtol: float = 1e-8, atol: float = 1e-10, **rig_params: Any) -> float:
+    """Mean friction force F_df [N] of one :class:`frictionsim.AxialVibrationRig` run (paper 000, Table 4).
+
+    Builds ``AxialVibrationRig(friction=friction, **rig_params)`` (``mass`` [kg], ``drive_stiffness`` [N/m],
+    ``sliding_velocity`` v_d [m/s], ``amplitude`` A [m], ``frequency`` f [Hz], ``normal_force`` N [N], ...),
+    simulates it to ``t_end`` [s] and returns the mean friction force over the whole vibration cycles after
+    ``transient`` [s]. Top-level and picklable: pass it to :func:`sweep`, e.g. over amplitude and frequency for
+    a friction-reduction map (reduction 1 - F_df / (mu N) for a Coulomb law).
+    """
+    from . import AxialVibrationRig, simulate
+
+    rig = AxialVibrationRig(friction=friction, **rig_params)
+    result = simulate(rig, t_end, method=method, rtol=rtol, atol=atol)
+    return result.mean_over_cycles(transient=transient)
+
+
+def kinematic_mean_friction(*, friction: Any, sliding_velocity: float, velocity_amplitude: float, frequency: float,
+                            normal_force: float, t_end: Optional[float] = None, transient: float = 0.0,
+                            method: str = "automatic", rtol: float = 1e-8, atol: float = 1e-10) -> float:
+    """Mean friction force [N] of a prescribed-motion contact, v_r = v_d - v_a cos(2 pi f t) (paper 000, eqs 8-9).
+
+    Builds :meth:`frictionsim.KinematicRig.harmonic` with ``sliding_velocity`` v_d [m/s],
+    ``velocity_amplitude`` v_a [m/s], ``frequency`` f [Hz] and ``normal_force`` N [N], simulates it to
+    ``t_end`` [s] (default: ``transient`` plus 10 periods) and returns the mean friction force over the whole
+    cycles after ``transient`` [s]. For Coulomb friction and v_d < v_a this is (2/pi) asin(v_d/v_a) mu N.
+    """
+    from . import KinematicRig, simulate
+
+    rig = KinematicRig.harmonic(friction, sliding_velocity=sliding_velocity, velocity_amplitude=velocity_amplitude,
+                                frequency=frequency, normal_force=normal_force)
+    if t_end is None:
+        t_end = transient + 10.0 * rig.period
+    result = simulate(rig, t_end, method=method, rtol=rtol, atol=atol)
+    return result.mean_over_cycles(transient=transient)
