@@ -1,0 +1,203 @@
+"""The ``frictionsim`` command line.
+
+    frictionsim run SCENARIO.toml [--out DIR]   simulate a scenario file (see frictionsim.scenario)
+    frictionsim demo [--out DIR] [--quick]      paper 000's Fig. 7 cases, friction reduction, Table 5 refit
+    frictionsim fit-table5 [--out DIR]          refit Table 5 from Table 4 and plot Fig. 11
+
+Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
+target and moved into place (files already in the target that the command does not write are left alone).
+Exit status: 0 on success, 2 for a bad scenario or command line (``error: <file>: <key>: <rule>`` on stderr),
+1 when a simulation stops early (with the time reached) or the outputs cannot be written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Iterator, List, Optional, Sequence
+
+from . import __version__
+from .errors import InvalidParameterError, SimulationError
+
+__all__ = ["main", "staged_directory"]
+
+#: default output directory of ``demo`` and ``fit-table5`` (scripts/demo sets FRICTIONSIM_OUT_DIR)
+DEFAULT_OUT = os.environ.get("FRICTIONSIM_OUT_DIR", "out")
+
+
+class CommandError(Exception):
+    """A failure reported as ``error: <message>`` with exit ``status``."""
+
+    def __init__(self, message: str, status: int) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Entry point of the ``frictionsim`` console script; returns the exit status."""
+    from .scenario import ScenarioError
+
+    parser = _parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "command", None):
+        parser.print_help(sys.stderr)
+        return 2
+    try:
+        return args.command(args)
+    except ScenarioError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    except CommandError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return error.status
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="frictionsim",
+        description="Friction-driven dynamics in drilling: simulate paper 000's axial vibrating-sliding rig and "
+                    "kinematic friction rigs with Coulomb, Stribeck, Dahl and LuGre friction.",
+        epilog="Scenario files are TOML; see examples/scenarios/ and `python -c 'help(\"frictionsim.scenario\")'`.")
+    parser.add_argument("--version", action="version", version=f"frictionsim {__version__}")
+    commands = parser.add_subparsers(title="commands", metavar="COMMAND")
+
+    run = commands.add_parser("run", help="simulate a scenario file, write CSV tables and PNG plots",
+                              description="Simulate every case of a TOML scenario file; write per-case time "
+                                          "series, summary.csv and PNG plots; print the summary.")
+    run.add_argument("scenario", type=Path, help="scenario file (TOML)")
+    run.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, else "
+                                              "out/<file stem>)")
+    run.set_defaults(command=_run)
+
+    demo = commands.add_parser("demo", help="paper 000 demo: Fig. 7 cases, friction reduction, Table 5 refit",
+                               description="Built-in scenarios of paper 000: Fig. 7 dry and OBM cases with Coulomb "
+                                           "and Dahl friction, friction reduction against Tables 4-5, an amplitude "
+                                           "sweep, and the Table 5 refit with the Fig. 11 plot.")
+    demo.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
+    demo.add_argument("--quick", action="store_true", help="a shorter amplitude sweep")
+    demo.set_defaults(command=_demo)
+
+    fit = commands.add_parser("fit-table5", help="refit Table 5 from Table 4, print both, plot Fig. 11",
+                              description="Least-squares refit of paper 000's Table 5 (log10 mu_df against "
+                                          "log10 v_a/v_d per lubricant) from Table 4, beside the printed values.")
+    fit.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
+    fit.set_defaults(command=_fit_table5)
+    return parser
+
+
+# ------------------------------------------------------------------------------------------------------- commands
+def _run(args) -> int:
+    from .demo import format_table
+    from .scenario import ScenarioRun, load, run_case
+
+    scenario = load(args.scenario)
+    out = args.out if args.out is not None else Path(scenario.output.directory or Path("out") / scenario.name)
+    _check_target(out)
+    runs = []
+    for index, case in enumerate(scenario.cases, start=1):
+        try:
+            runs.append(run_case(case))
+        except SimulationError as error:
+            raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: simulation stopped at t = "
+                               f"{error.time_reached:.9g} s of t_end = {case.solver.t_end:g} s: {error}", 1) from None
+        except InvalidParameterError as error:
+            raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: {error}", 2) from None
+    result = ScenarioRun(scenario, runs)
+    summary = result.summary()
+    print(f"{args.scenario}: {scenario.title}" if scenario.title else str(args.scenario))
+    columns = [("case", "case", "s"), ("law", "law", "s"), ("F_N_N", "F_N [N]", ".4g"),
+               ("mu_F_N_N", "mu F_N [N]", ".4g"), ("F_df_N", "F_df [N]", ".5g"), ("mu_df", "mu_df", ".4g"),
+               ("reduction_percent", "reduction [%]", ".2f")]
+    if summary["F_df_table5_N"].notna().any():
+        columns.append(("F_df_table5_N", "Table 5 F_df [N]", ".4g"))
+    columns += [("events", "events", "d"), ("steps", "steps", "d")]
+    print(format_table(summary, columns))
+    print("F_df: mean friction over whole cycles; reduction = 1 - F_df / (mu F_N)")
+    written = _write(out, result.write)
+    print(f"wrote {out}: {', '.join(str(p) for p in written)}")
+    return 0
+
+
+def _demo(args) -> int:
+    from . import demo
+
+    _check_target(args.out)
+    result = demo.compute(quick=args.quick)
+    print(result.report())
+    written = _write(args.out, result.write)
+    print(f"\nwrote {len(written)} files into {args.out}/: {', '.join(str(p) for p in written)}")
+    return 0
+
+
+def _fit_table5(args) -> int:
+    from . import demo
+
+    _check_target(args.out)
+    refit = demo.table5_refit()
+    print(demo.table5_report(refit))
+
+    def write(directory: Path) -> List[Path]:
+        path = directory / "table5_refit.csv"
+        refit.to_csv(path, index=False, float_format="%.10g")
+        return [path, demo.write_fig11(directory)]
+
+    written = _write(args.out, write)
+    print(f"wrote {args.out}: {', '.join(str(p) for p in written)}")
+    return 0
+
+
+# ----------------------------------------------------------------------------------------------- atomic outputs
+def _check_target(out: Path) -> None:
+    if out.exists() and not out.is_dir():
+        raise CommandError(f"{out}: output path exists and is not a directory", 2)
+
+
+def _write(out: Path, writer) -> List[Path]:
+    """Run ``writer(stage_directory)`` and move its files into ``out``; returns the paths relative to ``out``."""
+    try:
+        with staged_directory(out) as stage:
+            return [Path(p).relative_to(stage) for p in writer(stage)]
+    except OSError as error:
+        raise CommandError(f"{out}: cannot write the outputs ({error})", 1) from None
+
+
+@contextmanager
+def staged_directory(target) -> Iterator[Path]:
+    """Yield a new temporary directory next to ``target``; when the block succeeds, move its contents into
+    ``target`` (renamed into place if ``target`` does not exist yet), else delete it. Nothing half-written
+    appears in ``target``."""
+    target = Path(target).absolute()
+    target.parent.mkdir(parents=True, exist_ok=True)
+    stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
+    try:
+        yield stage
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(stage, 0o777 & ~mask)  # mkdtemp makes it private; give it the usual permissions
+        _commit(stage, target)
+    finally:
+        shutil.rmtree(stage, ignore_errors=True)
+
+
+def _commit(stage: Path, target: Path) -> None:
+    if not target.exists():
+        try:
+            os.rename(stage, target)
+            return
+        except OSError:
+            pass  # created meanwhile: merge below
+    for source in sorted(stage.rglob("*")):
+        if source.is_dir():
+            continue
+        destination = target / source.relative_to(stage)
+        destination.parent.mkdir(parents=True, exist_ok=True)
+        os.replace(source, destination)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,372 @@
+"""The built-in demo, ``frictionsim demo``: paper 000's axial vibrating-sliding rig (shale on 45 steel).
+
+1. Fig. 7: the dry case (Table 4 run VS3: u0 = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N) and the OBM case
+   (VS17: u0 = 4 mm, f = 20 Hz, F_N = 30 N) with Coulomb (eq 8) and Dahl (eq 9) friction side by side: each is a
+   scenario file (:data:`BUILTIN_SCENARIOS`, identical to examples/scenarios/fig7_*.toml) run exactly as
+   ``frictionsim run`` runs it, into ``<out>/fig7_dry/`` and ``<out>/fig7_obm/``.
+2. Friction reduction: the mean friction F_df with vibration against the same case without vibration (u0 = 0,
+   F_sf), per law, next to Table 4's measured F_df and F_sf and the Table 5 power law (eq 17) for those runs
+   (``fig7_friction_reduction.csv``).
+3. A sweep over the vibration amplitude (velocity ratio v_d/v_a) as in examples/axial_rig_demo.cpp: the
+   closed form 1 - (2/pi) asin(v_d/v_a) of the kinematic Coulomb rig, the simulated kinematic rig, and the axial
+   rig with Coulomb and Dahl friction (``friction_reduction.csv``, the C++ demo's file with more columns, and
+   ``friction_reduction.png``).
+4. The Table 5 refit: :func:`frictionsim.fit.fit_power_law` on :func:`frictionsim.data.table4` beside the
+   printed Table 5 (``table5_refit.csv``) and the log-log plot of Fig. 11 (``fig11_power_law.png``).
+
+Scenario choices follow examples/axial_rig_demo.cpp (the C++ demo): m = 0.2 kg, k_d = 2e4 N/m, mu = 0.41 (dry) and
+0.27 (OBM), Dahl k_t = 40 N/mm (Fig. 10), 2 s with the mean over the last 10 cycles; sweep ratios 0.05-1.5,
+kinematic runs over 5 cycles, axial runs averaged over 10 cycles after 8 s. Everything is simulated before
+anything is written (:func:`compute`, then :meth:`Demo.write`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Dict, List, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from .scenario import AnalysisSpec, Case, RigSpec, Scenario, ScenarioRun, SolverSpec, loads, run, run_case
+
+__all__ = ["BUILTIN_SCENARIOS", "Demo", "builtin_scenario", "compute", "format_table", "table5_refit"]
+
+#: The Fig. 7 scenarios, as TOML (the text of examples/scenarios/<name>.toml).
+BUILTIN_SCENARIOS: Dict[str, str] = {
+    "fig7_dry_coulomb_vs_dahl": """# Paper 000, Fig. 7(a): dry shale on 45 steel, Table 4 run VS3 (u = 5 mm, f = 17 Hz, v_d = 60 mm/min,
+# F_N = 90 N), with Coulomb (eq 8) and Dahl (eq 9) friction side by side on the axial vibrating-sliding rig
+# (eqs 5-7). Scenario choices of examples/axial_rig_demo.cpp: m = 0.2 kg and k_d = 2e4 N/m (the paper gives
+# neither), mu = 0.41 (Table 4: F_sf / F_N = 0.4097), Dahl k_t = 40 N/mm (Fig. 10) with alpha = 1, 2 s
+# simulated, mean friction F_df over the last 10 whole cycles. Fig. 7's caption prints v_d = 60 mm/s; Table 4
+# (VS3) gives 60 mm/min = 1 mm/s, used here.
+# This file is also `frictionsim demo`'s built-in Fig. 7(a) scenario (frictionsim/demo.py, kept identical).
+#   frictionsim run examples/scenarios/fig7_dry_coulomb_vs_dahl.toml [--out DIR]
+title = "Paper 000 Fig. 7(a): dry, u = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N (Table 4 VS3)"
+
+[rig]
+type = "axial"
+mass = 0.2                  # m [kg]
+drive_stiffness = 2.0e4     # k_d [N/m]
+sliding_velocity = 1.0e-3   # v_d [m/s] = 60 mm/min
+amplitude = 5.0e-3          # u0 [m]
+frequency = 17.0            # f [Hz]
+normal_force = 90.0         # F_N [N]
+
+[solver]
+t_end = 2.0                 # s
+rtol = 1e-8
+atol = 1e-12
+output_points = 4001
+
+[analysis]
+cycles = 10                 # F_df over the last 10 whole cycles before t_end
+
+[output]
+directory = "out/fig7_dry"
+
+[[case]]
+name = "coulomb"
+lubricant = "dry"
+friction = { type = "coulomb", mu = 0.41 }
+
+[[case]]
+name = "dahl"
+lubricant = "dry"
+friction = { type = "dahl", mu = 0.41, tangential_stiffness = 4.0e4 }   # k_t [N/m] = 40 N/mm
+""",
+    "fig7_obm": """# Paper 000, Fig. 7(b): shale on 45 steel lubricated with oil-based mud (OBM), Table 4 run VS17 (u = 4 mm,
+# f = 20 Hz, v_d = 60 mm/min, F_N = 30 N), with Coulomb (eq 8) and Dahl (eq 9) friction side by side on the
+# axial vibrating-sliding rig (eqs 5-7). Scenario choices of examples/axial_rig_demo.cpp: m = 0.2 kg and
+# k_d = 2e4 N/m (the paper gives neither), mu = 0.27 (Table 4: F_sf / F_N = 0.2700; section 2.4.1), Dahl
+# k_t = 40 N/mm (Fig. 10) with alpha = 1, 2 s simulated, mean friction F_df over the last 10 whole cycles.
+# Fig. 7's caption prints v_d = 60 mm/s; Table 4 (VS17) gives 60 mm/min = 1 mm/s, used here.
+# This file is also `frictionsim demo`'s built-in Fig. 7(b) scenario (frictionsim/demo.py, kept identical).
+#   frictionsim run examples/scenarios/fig7_obm.toml [--out DIR]
+title = "Paper 000 Fig. 7(b): OBM, u = 4 mm, f = 20 Hz, v_d = 60 mm/min, F_N = 30 N (Table 4 VS17)"
+
+[rig]
+type = "axial"
+mass = 0.2                  # m [kg]
+drive_stiffness = 2.0e4     # k_d [N/m]
+sliding_velocity = 1.0e-3   # v_d [m/s] = 60 mm/min
+amplitude = 4.0e-3          # u0 [m]
+frequency = 20.0            # f [Hz]
+normal_force = 30.0         # F_N [N]
+
+[solver]
+t_end = 2.0                 # s
+rtol = 1e-8
+atol = 1e-12
+output_points = 4001
+
+[analysis]
+cycles = 10                 # F_df over the last 10 whole cycles before t_end
+
+[output]
+directory = "out/fig7_obm"
+
+[[case]]
+name = "coulomb"
+lubricant = "obm"
+friction = { type = "coulomb", mu = 0.27 }
+
+[[case]]
+name = "dahl"
+lubricant = "obm"
+friction = { type = "dahl", mu = 0.27, tangential_stiffness = 4.0e4 }   # k_t [N/m] = 40 N/mm
+""",
+}
+#: output subdirectory -> built-in scenario
+FIG7 = {"fig7_dry": "fig7_dry_coulomb_vs_dahl", "fig7_obm": "fig7_obm"}
+
+#: v_d / v_a of the sweep: examples/axial_rig_demo.cpp's ratios (the quick demo takes every other one)
+SWEEP_RATIOS = (0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.95, 1.5)
+QUICK_SWEEP_RATIOS = (0.1, 0.4, 0.8, 1.5)
+SWEEP_SETTLE = 8.0  #: s before the 10 averaged cycles of the axial sweep runs (Dahl loads over ~1 mm at 1 mm/s)
+NO_VIBRATION_T_END = 12.0  #: s; without vibration the Dahl force approaches mu F_N with a ~1 s time constant
+
+
+def builtin_scenario(name: str) -> Scenario:
+    """A built-in scenario, parsed by :func:`frictionsim.scenario.loads` (the one schema)."""
+    return loads(BUILTIN_SCENARIOS[name], source=f"<built-in {name}.toml>", name=name)
+
+
+def format_table(frame, columns: Sequence[Tuple[str, str, str]]) -> str:
+    """Fixed-width text of ``frame``'s ``(column, header, format)`` columns; NaN prints as "-"."""
+    cells = [[header for _, header, _ in columns]]
+    for _, row in frame.iterrows():
+        cells.append([("-" if isinstance(row[c], float) and math.isnan(row[c]) else format(row[c], f))
+                      for c, _, f in columns])
+    widths = [max(len(r[i]) for r in cells) for i in range(len(columns))]
+    lines = ["  ".join(v.ljust(widths[i]) if i == 0 else v.rjust(widths[i]) for i, v in enumerate(r)) for r in cells]
+    return "\n".join(line.rstrip() for line in lines)
+
+
+def table5_refit():
+    """Table 5 as printed beside its refit from Table 4 (:func:`frictionsim.fit.fit_power_law`), per lubricant.
+
+    Columns: lubricant, lubricant_printed, slope_printed, slope_refit (= c), intercept_printed, intercept_refit
+    (= log10 eta'), eta_prime_printed, eta_prime_refit, r_squared_printed, r_squared_refit,
+    adjusted_r_squared_refit, n_runs, velocity_ratio_min, velocity_ratio_max (v_a/v_d fitted).
+    """
+    import pandas as pd
+
+    from .data import table4, table5
+    from .fit import fit_power_law
+
+    fits = fit_power_law(table4())
+    printed = table5().set_index("lubricant")
+    frame = pd.DataFrame({
+        "lubricant_printed": printed["lubricant_printed"],
+        "slope_printed": printed["slope"], "slope_refit": fits["slope"],
+        "intercept_printed": printed["intercept"], "intercept_refit": fits["intercept"],
+        "eta_prime_printed": printed["eta_prime"], "eta_prime_refit": fits["eta_prime"],
+        "r_squared_printed": printed["r_squared"], "r_squared_refit": fits["r_squared"],
+        "adjusted_r_squared_refit": fits["adjusted_r_squared"], "n_runs": fits["n_runs"],
+        "velocity_ratio_min": fits["velocity_ratio_min"], "velocity_ratio_max": fits["velocity_ratio_max"],
+    }, index=fits.index)
+    frame.index.name = "lubricant"
+    return frame.reset_index()
+
+
+TABLE5_COLUMNS = [("lubricant", "lubricant", "s"), ("slope_printed", "slope (printed)", "g"),
+                  ("slope_refit", "refit", ".5f"), ("intercept_printed", "intercept (printed)", "g"),
+                  ("intercept_refit", "refit", ".5f"), ("eta_prime_printed", "eta' (printed)", "g"),
+                  ("eta_prime_refit", "refit", ".4f"), ("r_squared_printed", "R^2 (printed)", "g"),
+                  ("r_squared_refit", "refit", ".4f"), ("adjusted_r_squared_refit", "adj. R^2", ".4f")]
+
+
+def table5_report(refit) -> str:
+    """The refit table as text (printed values as printed), with a note on the R^2 column."""
+    return ("Table 5 refit from Table 4 (least squares log10 mu_df = c log10(v_a/v_d) + log10 eta', per lubricant)\n"
+            + format_table(refit, TABLE5_COLUMNS)
+            + "\nslopes and intercepts reproduce Table 5; the printed R^2 are 0.04-0.09 below the fits' R^2 "
+              "(closest: adjusted R^2; see frictionsim.fit.power_law)")
+
+
+def _table4_row(run_):
+    """Table 4's run with the case's lubricant, u0, f, v_d and F_N, or None."""
+    from .data import table4
+
+    t4, rig = table4(), run_.rig
+    match = t4[(t4["lubricant"] == run_.case.lubricant)
+               & np.isclose(t4["amplitude_m"], float(rig.amplitude))
+               & np.isclose(t4["frequency_hz"], float(rig.frequency))
+               & np.isclose(t4["sliding_velocity_m_per_s"], float(rig.sliding_velocity))
+               & np.isclose(t4["normal_force_n"], float(rig.normal_force))]
+    return match.iloc[0] if len(match) else None
+
+
+def _without_vibration(case: Case) -> Case:
+    """The same case with u0 = 0 (F_sf), long enough to reach steady sliding; mean over the last 10 cycles."""
+    return dataclasses.replace(case, name=f"{case.name}_no_vibration", rig=case.rig.with_params(amplitude=0.0),
+                               solver=dataclasses.replace(case.solver, t_end=NO_VIBRATION_T_END, output_points=2,
+                                                          output_step=None),
+                               analysis=AnalysisSpec(cycles=10))
+
+
+def _reduction_rows(subdir: str, scenario_run: ScenarioRun) -> List[dict]:
+    rows = []
+    for r in scenario_run.runs:
+        still = run_case(_without_vibration(r.case))
+        t4 = _table4_row(r)
+        normal, ratio = r.normal_force, r.velocity_ratio
+        power = _core.PowerLawCoefficient.from_table5(r.case.lubricant) if r.case.lubricant else None
+        mu_t5 = float(power.coefficient(ratio, 1.0)) if power is not None else math.nan
+        rows.append({
+            "case": subdir, "law": r.case.friction.label, "table4_run": t4["number"] if t4 is not None else "",
+            "F_N_N": normal, "mu": r.case.friction.mu, "velocity_ratio": ratio,
+            "F_df_sim_N": r.mean_friction, "F_sf_sim_N": still.mean_friction,
+            "reduction_sim_percent": 100.0 * (1.0 - r.mean_friction / still.mean_friction),
+            "mu_df_sim": r.mean_friction / normal,
+            "F_df_table4_N": float(t4["F_df_N"]) if t4 is not None else math.nan,
+            "F_sf_table4_N": float(t4["F_sf_N"]) if t4 is not None else math.nan,
+            "reduction_table4_percent": 100.0 * (1.0 - t4["F_df_N"] / t4["F_sf_N"]) if t4 is not None else math.nan,
+            "mu_df_table4": float(t4["mu_df"]) if t4 is not None else math.nan,
+            "F_df_table5_N": mu_t5 * normal, "mu_df_table5": mu_t5,
+        })
+    return rows
+
+
+REDUCTION_COLUMNS = [("case", "case", "s"), ("law", "law", "s"), ("F_df_sim_N", "F_df sim [N]", ".4g"),
+                     ("F_sf_sim_N", "F_sf sim [N]", ".4g"), ("reduction_sim_percent", "reduction sim [%]", ".2f"),
+                     ("table4_run", "Table 4", "s"), ("F_df_table4_N", "F_df [N]", ".2f"),
+                     ("F_sf_table4_N", "F_sf [N]", ".2f"), ("reduction_table4_percent", "reduction [%]", ".2f"),
+                     ("F_df_table5_N", "Table 5 F_df [N]", ".2f")]
+
+
+def _sweep(dry: ScenarioRun, ratios: Sequence[float]):
+    """Friction reduction 1 - F_df/(mu F_N) against v_d/v_a on the dry Fig. 7 case (axial_rig_demo.cpp)."""
+    import pandas as pd
+
+    coulomb, dahl = (next(r for r in dry.runs if r.case.friction.type == kind) for kind in ("coulomb", "dahl"))
+    rig = coulomb.rig
+    v_d, f, normal, mu = float(rig.sliding_velocity), float(rig.frequency), float(rig.normal_force), \
+        coulomb.case.friction.mu
+    omega, period = 2 * math.pi * f, 1.0 / f
+    table5 = _core.PowerLawCoefficient.from_table5("dry")
+    from .data import table4
+
+    dry_runs = table4()[table4()["lubricant"] == "dry"]
+    rows = []
+    for ratio in sorted(set(ratios) | {v_d / float(rig.vibration_velocity_amplitude)}):
+        v_a = v_d / ratio
+        kinematic = Case(f"kinematic_{ratio:g}", RigSpec("kinematic", {
+            "sliding_velocity": v_d, "velocity_amplitude": v_a, "frequency": f, "normal_force": normal}),
+            coulomb.case.friction, SolverSpec(5 * period, rtol=1e-10, atol=1e-12, output_points=2),
+            AnalysisSpec(transient=0.0, cycles=5))
+        axial = {}
+        for r in (coulomb, dahl):
+            case = dataclasses.replace(
+                r.case, name=f"axial_{r.case.friction.type}_{ratio:g}",
+                rig=r.case.rig.with_params(amplitude=v_a / omega),
+                solver=dataclasses.replace(r.case.solver, t_end=SWEEP_SETTLE + 10 * period, output_points=2),
+                analysis=AnalysisSpec(transient=SWEEP_SETTLE, cycles=10))
+            axial[r.case.friction.type] = 1.0 - run_case(case).mean_friction / (mu * normal)
+        inside = dry_runs["velocity_ratio"].min() <= 1.0 / ratio <= dry_runs["velocity_ratio"].max()
+        measured = dry_runs[np.isclose(dry_runs["velocity_ratio"], 1.0 / ratio, rtol=1e-9)]
+        rows.append({
+            "velocity_ratio": ratio, "velocity_amplitude_m_per_s": v_a, "amplitude_mm": 1e3 * v_a / omega,
+            "coulomb_closed_form": 1.0 - 2.0 / math.pi * math.asin(ratio) if ratio < 1 else 0.0,
+            "kinematic_coulomb": 1.0 - run_case(kinematic).mean_friction / (mu * normal),
+            "axial_coulomb": axial["coulomb"], "axial_dahl": axial["dahl"],
+            "table5_dry": 1.0 - float(table5.coefficient(1.0 / ratio, 1.0)) / mu if inside else math.nan,
+            "table4_dry": float(1.0 - measured["F_df_N"].iloc[0] / measured["F_sf_N"].iloc[0]) if len(measured)
+            else math.nan,
+        })
+    return pd.DataFrame(rows)
+
+
+SWEEP_COLUMNS = [("velocity_ratio", "v_d/v_a", ".5g"), ("amplitude_mm", "u0 [mm]", ".4g"),
+                 ("coulomb_closed_form", "Coulomb exact", ".2%"), ("kinematic_coulomb", "kinematic sim", ".2%"),
+                 ("axial_coulomb", "axial Coulomb", ".2%"), ("axial_dahl", "axial Dahl", ".2%"),
+                 ("table5_dry", "Table 5 dry", ".2%"), ("table4_dry", "Table 4 dry", ".2%")]
+
+
+@dataclass
+class Demo:
+    """Everything the demo computed; :meth:`report` is what it prints, :meth:`write` what it writes."""
+
+    fig7: Dict[str, ScenarioRun]
+    reduction: "object"  #: pandas DataFrame (fig7_friction_reduction.csv)
+    sweep: "object"  #: pandas DataFrame (friction_reduction.csv), reductions as fractions
+    refit: "object"  #: pandas DataFrame (table5_refit.csv)
+    quick: bool
+    elapsed: float  #: s of simulation and fitting
+
+    def report(self) -> str:
+        dry = self.fig7["fig7_dry"].runs[0].rig
+        lines = [
+            "frictionsim demo: paper 000, axial vibrating-sliding rig (shale on 45 steel, eqs 5-9)"
+            + (" [quick]" if self.quick else ""),
+            f"scenario choices of examples/axial_rig_demo.cpp: m = {dry.mass:g} kg, k_d = {dry.drive_stiffness:g} N/m, "
+            f"v_d = {dry.sliding_velocity * 6e4:g} mm/min, Dahl k_t = 40 N/mm (Fig. 10); 2 s, mean over the last "
+            "10 cycles",
+            "",
+            "1. Fig. 7 cases: mean friction over whole cycles with vibration (F_df) and without (F_sf: u0 = 0, "
+            f"{NO_VIBRATION_T_END:g} s),",
+            "   against Table 4's measured F_df, F_sf and the Table 5 power law mu_df = eta' (v_a/v_d)^c F_N",
+            format_table(self.reduction, REDUCTION_COLUMNS),
+            "",
+            f"2. Friction reduction 1 - F_df/(mu F_N) vs v_d/v_a (dry: mu = 0.41, F_N = {dry.normal_force:g} N, "
+            f"f = {dry.frequency:g} Hz, v_d = {dry.sliding_velocity:g} m/s;",
+            "   ratios of axial_rig_demo.cpp plus Table 4 VS3's; kinematic: 5 cycles; axial: 10 cycles after "
+            f"{SWEEP_SETTLE:g} s;",
+            "   Table 5 only inside its fitted 160 <= v_a/v_d <= 2564; Table 4: measured 1 - F_df/F_sf)",
+            format_table(self.sweep, SWEEP_COLUMNS),
+            "",
+            "3. " + table5_report(self.refit),
+            "",
+            f"simulated and fitted in {self.elapsed:.2f} s",
+        ]
+        return "\n".join(lines)
+
+    def write(self, directory: Union[str, Path]) -> List[Path]:
+        """Write the CSVs and PNGs into ``directory`` (which must exist)."""
+        from . import plots
+
+        directory, written = Path(directory), []
+        for subdir, scenario_run in self.fig7.items():
+            (directory / subdir).mkdir()
+            written += scenario_run.write(directory / subdir)
+        for name, frame in (("fig7_friction_reduction.csv", self.reduction), ("friction_reduction.csv", self.sweep),
+                            ("table5_refit.csv", self.refit)):
+            written.append(directory / name)
+            frame.to_csv(written[-1], index=False, float_format="%.10g")
+        figure = plots.reduction_sweep_figure(
+            self.sweep, [("coulomb_closed_form", "Coulomb closed form 1 - (2/pi) asin(v_d/v_a)"),
+                         ("kinematic_coulomb", "kinematic rig, Coulomb"), ("axial_coulomb", "axial rig, Coulomb"),
+                         ("axial_dahl", "axial rig, Dahl k_t = 40 N/mm"), ("table5_dry", "Table 5 dry (eq 17)"),
+                         ("table4_dry", "Table 4 VS3, measured 1 - F_df/F_sf")],
+            title="friction reduction vs velocity ratio, dry: mu = 0.41, F_N = 90 N, f = 17 Hz "
+                  "(paper 000 Fig. 7(a) rig)")
+        written.append(plots.save(figure, directory / "friction_reduction.png"))
+        written.append(write_fig11(directory))
+        return written
+
+
+def write_fig11(directory: Union[str, Path]) -> Path:
+    """Paper 000 Fig. 11 (Table 4 points, refit and printed Table 5 lines) as fig11_power_law.png."""
+    from . import plots
+    from .data import table4, table5
+    from .fit import fit_power_law
+
+    figure = plots.power_law_figure(table4(), fit_power_law(table4()), table5())
+    return plots.save(figure, Path(directory) / "fig11_power_law.png")
+
+
+def compute(quick: bool = False) -> Demo:
+    """Run every simulation and fit of the demo; writes nothing. ``quick`` halves the sweep."""
+    import pandas as pd
+
+    start = time.perf_counter()
+    fig7 = {subdir: run(builtin_scenario(name)) for subdir, name in FIG7.items()}
+    reduction = pd.DataFrame([row for subdir, r in fig7.items() for row in _reduction_rows(subdir.split("_")[1], r)])
+    sweep = _sweep(fig7["fig7_dry"], QUICK_SWEEP_RATIOS if quick else SWEEP_RATIOS)
+    refit = table5_refit()
+    return Demo(fig7, reduction, sweep, refit, quick, time.perf_counter() - start)

@@ -1,0 +1,321 @@
+"""The frictionsim command line, scenario files and plots (frictionsim.cli, .scenario, .demo, .plots)."""
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import frictionsim as fs
+from frictionsim import demo, scenario
+from frictionsim.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples" / "scenarios"
+EXAMPLE_FILES = ["fig7_dry_coulomb_vs_dahl.toml", "fig7_obm.toml", "kinematic_dahl.toml"]
+
+# Table 5 as printed (paper 000), typed in here independently of the package's CSV.
+PRINTED_SLOPES = {"dry": -0.36513, "water": -0.09531, "wbm": -0.16533, "obm": -0.20306, "sbm": -0.09244}
+
+
+def _files(directory: Path):
+    return sorted(str(p.relative_to(directory)) for p in directory.rglob("*"))
+
+
+def _mean_directly(rig, t_end, points, period, transient, cycles, **solver):
+    """F_df [N] straight from fs.simulate: the grid plus the window ends, mean over whole cycles."""
+    t_a = transient
+    times = np.union1d(np.linspace(0.0, t_end, points), [t_a, t_a + cycles * period])
+    result = fs.simulate(rig, t_end, output_times=times, **solver)
+    return result.mean_over_cycles(period=period, transient=t_a, cycles=cycles)
+
+
+# ------------------------------------------------------------------------------------------------ run: examples
+@pytest.mark.parametrize("name", EXAMPLE_FILES)
+def test_run_example_writes_expected_files(name, tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / name), "--out", str(out)]) == 0
+    parsed = scenario.load(EXAMPLES / name)
+    axial = any(case.rig.type == "axial" for case in parsed.cases)
+    expected = {f"{case.name}.csv" for case in parsed.cases} | {"summary.csv", "scenario.toml",
+                                                                "friction_force.png", "hysteresis.png"}
+    if axial:
+        expected.add("drive_force.png")
+    assert set(_files(out)) == expected
+    assert _files(tmp_path) == ["out"] + [f"out/{f}" for f in sorted(expected)]  # no staging left behind
+    assert (out / "scenario.toml").read_text() == (EXAMPLES / name).read_text()
+    for png in out.glob("*.png"):
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+
+    summary = pd.read_csv(out / "summary.csv")
+    assert list(summary["case"]) == [case.name for case in parsed.cases]
+    for case in parsed.cases:
+        series = pd.read_csv(out / f"{case.name}.csv")
+        for column in ("t", "friction_force", "relative_velocity", "relative_displacement", "mode",
+                       "friction_impulse"):
+            assert column in series
+        if case.rig.type == "axial":
+            for column in ("position", "velocity", "drive_force"):
+                assert column in series
+        assert series["t"].iloc[0] == 0.0 and series["t"].iloc[-1] == pytest.approx(case.solver.t_end)
+
+    stdout = capsys.readouterr().out
+    assert "F_df [N]" in stdout and all(case.name in stdout for case in parsed.cases)
+
+
+def test_run_fig7_dry_mean_equals_direct_simulation(tmp_path):
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / "fig7_dry_coulomb_vs_dahl.toml"), "--out", str(out)]) == 0
+    summary = pd.read_csv(out / "summary.csv").set_index("case")
+    period = 1 / 17.0
+    for case, law in (("coulomb", fs.Coulomb(0.41)), ("dahl", fs.Dahl(0.41, 4e4))):
+        rig = fs.AxialVibrationRig(friction=law, mass=0.2, drive_stiffness=2e4, sliding_velocity=1e-3,
+                                   amplitude=5e-3, frequency=17.0, normal_force=90.0)
+        expected = _mean_directly(rig, 2.0, 4001, period, 2.0 - 10 * period, 10, rtol=1e-8, atol=1e-12)
+        row = summary.loc[case]
+        assert row["F_df_N"] == pytest.approx(expected, rel=1e-9)
+        assert row["mu_df"] == pytest.approx(expected / 90.0, rel=1e-9)
+        assert row["reduction_percent"] == pytest.approx(100 * (1 - expected / (0.41 * 90.0)), rel=1e-9)
+        assert row["cycles"] == 10 and row["events"] > 0 and row["steps"] > 0
+        # Table 5 dry power law at v_a/v_d = 2 pi 17 Hz 5 mm / 1 mm/s (Table 4 VS3)
+        assert row["F_df_table5_N"] == pytest.approx(
+            1.0676 * (2 * math.pi * 17 * 5e-3 / 1e-3) ** -0.36513 * 90.0, rel=1e-9)
+    assert summary.loc["dahl", "F_df_N"] == pytest.approx(0.054589, rel=1e-4)
+
+
+@pytest.mark.parametrize("name", EXAMPLE_FILES)
+def test_run_every_example_mean_equals_direct_simulation(name, tmp_path):
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / name), "--out", str(out)]) == 0
+    summary = pd.read_csv(out / "summary.csv").set_index("case")
+    for case in scenario.load(EXAMPLES / name).cases:
+        law = {"coulomb": fs.Coulomb, "dahl": fs.Dahl}[case.friction.type](**case.friction.params)
+        if case.rig.type == "axial":
+            rig = fs.AxialVibrationRig(friction=law, **case.rig.params)
+        else:
+            rig = fs.KinematicRig.harmonic(law, **case.rig.params)
+        a = case.analysis
+        transient = a.transient if a.transient is not None else case.solver.t_end - a.cycles * rig.period
+        times = np.union1d(case.solver.grid(), [transient, transient + a.cycles * rig.period])
+        result = fs.simulate(rig, case.solver.t_end, rtol=case.solver.rtol, atol=case.solver.atol,
+                             output_times=times)
+        expected = result.mean_over_cycles(transient=transient, cycles=a.cycles)
+        assert summary.loc[case.name, "F_df_N"] == pytest.approx(expected, rel=1e-9)
+
+
+def test_kinematic_dahl_matches_hand_written_case(tmp_path):
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / "kinematic_dahl.toml"), "--out", str(out)]) == 0
+    summary = pd.read_csv(out / "summary.csv").set_index("case")
+    rig = fs.KinematicRig.harmonic(fs.Dahl(0.41, 3e4), sliding_velocity=1e-3, velocity_amplitude=0.534,
+                                   frequency=17.0, normal_force=90.0)
+    times = np.union1d(np.arange(0, 6001) * 1e-4, [0.2, 0.2 + 5 / 17])
+    result = fs.simulate(rig, 0.6, rtol=1e-9, atol=1e-12, output_times=times)
+    assert summary.loc["dahl_kt30", "F_df_N"] == pytest.approx(result.mean_over_cycles(transient=0.2, cycles=5),
+                                                               rel=1e-9)
+    # Coulomb in a kinematic rig: 1 - (2/pi) asin(v_d/v_a) reduction (closed form)
+    coulomb = summary.loc["coulomb"]
+    assert coulomb["reduction_percent"] / 100 == pytest.approx(1 - 2 / math.pi * math.asin(1e-3 / 0.534), rel=1e-6)
+
+
+def test_velocity_file_case(tmp_path):
+    t = np.linspace(0.0, 0.5, 2001)
+    v = 1e-3 - 0.2 * np.cos(2 * math.pi * 20 * t)
+    np.savetxt(tmp_path / "v.csv", np.column_stack([t, v]), delimiter=",", header="t,v", comments="")
+    (tmp_path / "s.toml").write_text(
+        'rig = { type = "kinematic", velocity_file = "v.csv", normal_force = 30.0 }\n'
+        'friction = { type = "dahl", mu = 0.27, tangential_stiffness = 4e4 }\n'
+        'solver = { t_end = 0.5, output_points = 501 }\n'
+        'analysis = { period = 0.05, transient = 0.1, cycles = 6 }\n')
+    out = tmp_path / "out"
+    assert main(["run", str(tmp_path / "s.toml"), "--out", str(out)]) == 0
+    assert set(_files(out)) == {"dahl.csv", "summary.csv", "friction_force.png", "hysteresis.png"}
+    rig = fs.KinematicRig(fs.Dahl(0.27, 4e4), relative_velocity=(t, v), normal_force=30.0)
+    times = np.union1d(np.linspace(0, 0.5, 501), [0.1, 0.4])
+    expected = fs.simulate(rig, 0.5, output_times=times).mean_over_cycles(period=0.05, transient=0.1, cycles=6)
+    assert pd.read_csv(out / "summary.csv")["F_df_N"].iloc[0] == pytest.approx(expected, rel=1e-9)
+
+
+def test_single_case_file_and_defaults(tmp_path):
+    text = ('[rig]\ntype = "axial"\namplitude = 4e-3\nfrequency = 20.0\nnormal_force = 30.0\n'
+            '[friction]\ntype = "coulomb"\nmu = 0.27\n[solver]\nt_end = 1.0\n')
+    parsed = scenario.loads(text, source=tmp_path / "one.toml")
+    (case,) = parsed.cases
+    assert case.name == "coulomb" and parsed.name == "one"
+    assert case.window() == pytest.approx((0.5, 1.0, 10))  # default: whole cycles after t_end / 2
+    assert case.build().mass == 0.2  # engine default
+    assert parsed.output.plots == ("friction_force", "hysteresis", "drive_force")
+
+
+# ----------------------------------------------------------------------------------------------- bad scenarios
+DRY = (EXAMPLES / "fig7_dry_coulomb_vs_dahl.toml").read_text()
+
+BAD = [
+    ("unknown key", DRY.replace("mass = 0.2 ", "mas = 0.2 "), "rig.mas", "unknown key"),
+    ("unknown case key", DRY.replace('name = "dahl"', 'name = "dahl"\ncolour = "red"'), "case[2].colour",
+     "unknown key"),
+    ("unknown law key", DRY.replace("tangential_stiffness = 4.0e4", "tangential_stiffnes = 4.0e4"),
+     "case[2].friction.tangential_stiffnes", "unknown key for a dahl law"),
+    ("missing value", DRY.replace("mu = 0.41, tangential", "tangential"), "case[2].friction.mu",
+     "missing required value"),
+    ("missing t_end", DRY.replace("t_end = 2.0 ", "# t_end"), "solver.t_end", "missing required value"),
+    ("wrong type", DRY.replace("t_end = 2.0 ", 't_end = "2" '), "solver.t_end", "must be a number"),
+    ("wrong type bool", DRY.replace("mass = 0.2 ", "mass = true "), "rig.mass", "must be a number"),
+    ("negative mass", DRY.replace("mass = 0.2 ", "mass = -0.2 "), "rig.mass", "must be positive"),
+    ("negative stiffness", DRY.replace("tangential_stiffness = 4.0e4", "tangential_stiffness = -4.0e4"),
+     "case[2].friction.tangential_stiffness", "must be positive"),
+    ("mu_static below mu", DRY.replace("mu = 0.41 }", "mu = 0.41, mu_static = 0.3 }"),
+     "case[1].friction.mu_static", "must be >="),
+    ("unknown law type", DRY.replace('type = "dahl"', 'type = "dhal"'), "case[2].friction.type",
+     "must be one of coulomb, stribeck, dahl, lugre"),
+    ("unknown rig type", DRY.replace('type = "axial"', 'type = "torsional"'), "rig.type", "must be one of"),
+    ("unknown method", DRY.replace("rtol = 1e-8", 'method = "rk4"'), "solver.method", "must be one of"),
+    ("window too long", DRY.replace("cycles = 10 ", "cycles = 100 "), "analysis.cycles", "must fit"),
+    ("transient too long", DRY.replace("cycles = 10 ", "transient = 5.0 "), "analysis.transient", "must be"),
+    ("unknown lubricant", DRY.replace('lubricant = "dry"', 'lubricant = "mud"', 1), "case[1].lubricant",
+     "must be one of dry"),
+    ("duplicate name", DRY.replace('name = "dahl"', 'name = "coulomb"'), "case[2].name", "duplicate case name"),
+    ("unknown plot", DRY.replace('directory = "out/fig7_dry"', 'plots = ["bode"]'), "output.plots[1]",
+     "must be one of"),
+    ("kinematic missing", 'rig = {type = "kinematic", normal_force = 90.0, sliding_velocity = 1e-3, '
+                          'frequency = 17.0}\nfriction = {type = "dahl", mu = 0.4, tangential_stiffness = 4e4}\n'
+                          'solver = {t_end = 1.0}\n', "rig.velocity_amplitude", "missing required value"),
+    ("missing velocity file", 'rig = {type = "kinematic", normal_force = 90.0, velocity_file = "nope.csv"}\n'
+                              'friction = {type = "dahl", mu = 0.4, tangential_stiffness = 4e4}\n'
+                              'solver = {t_end = 1.0}\nanalysis = {period = 0.1}\n', "rig.velocity_file",
+     "cannot read"),
+    ("no friction", 'rig = {type = "axial"}\nsolver = {t_end = 1.0}\n', "friction", "missing required table"),
+]
+
+
+@pytest.mark.parametrize("label, text, key, rule", BAD, ids=[b[0] for b in BAD])
+def test_bad_scenario_names_file_and_key_and_writes_nothing(label, text, key, rule, tmp_path, capsys,
+                                                            monkeypatch):
+    work = tmp_path / "work"
+    work.mkdir()
+    bad = work / "bad.toml"
+    bad.write_text(text)
+    monkeypatch.chdir(work)  # the file's own output.directory (out/fig7_dry) must not appear either
+    assert main(["run", str(bad)]) == 2
+    assert main(["run", str(bad), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {bad}: {key}: "), err
+    assert rule in err
+    assert "Traceback" not in err and err.count("\n") == 2
+    assert _files(tmp_path) == ["work", "work/bad.toml"]
+    with pytest.raises(scenario.ScenarioError) as info:
+        scenario.load(bad)
+    assert info.value.key == key and info.value.file == str(bad)
+
+
+def test_bad_toml_syntax_and_missing_file(tmp_path, capsys):
+    bad = tmp_path / "bad.toml"
+    bad.write_text(DRY.replace("cycles = 10 ", "cycles = "))
+    assert main(["run", str(bad), "--out", str(tmp_path / "out")]) == 2
+    assert main(["run", str(tmp_path / "none.toml"), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert err[0].startswith(f"error: {bad}: invalid TOML:") and "line" in err[0]
+    assert err[1].startswith(f"error: {tmp_path / 'none.toml'}: cannot read")
+    assert _files(tmp_path) == ["bad.toml"]
+
+
+def test_simulation_failure_reports_time_and_writes_nothing(tmp_path, capsys, monkeypatch):
+    def failing(*args, **kwargs):
+        raise fs.SimulationError("integrator step size underflow", 0.625)
+
+    monkeypatch.setattr(scenario, "simulate", failing)
+    out = tmp_path / "out"
+    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "case[1] 'coulomb'" in err and "t = 0.625 s" in err and "underflow" in err
+    assert "Traceback" not in err
+    assert not out.exists() and _files(tmp_path) == []
+
+
+def test_output_into_existing_directory_and_onto_a_file(tmp_path, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "keep.txt").write_text("mine")
+    (out / "summary.csv").write_text("old")
+    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out)]) == 0
+    assert (out / "keep.txt").read_text() == "mine"
+    assert (out / "summary.csv").read_text().startswith("case,law")
+    assert _files(tmp_path)[0] == "out" and all(f.startswith("out") for f in _files(tmp_path))
+    (tmp_path / "file").write_text("")
+    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(tmp_path / "file")]) == 2
+    assert "not a directory" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------------------------------- fit-table5 and demo
+def test_fit_table5_matches_printed_slopes(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["fit-table5", "--out", str(out)]) == 0
+    assert set(_files(out)) == {"table5_refit.csv", "fig11_power_law.png"}
+    refit = pd.read_csv(out / "table5_refit.csv").set_index("lubricant")
+    for lubricant, slope in PRINTED_SLOPES.items():
+        assert round(refit.loc[lubricant, "slope_refit"], 5) == slope
+        assert refit.loc[lubricant, "slope_printed"] == slope
+    stdout = capsys.readouterr().out
+    assert "-0.36513" in stdout and "slope (printed)" in stdout and "obm" in stdout
+
+
+def test_demo_quick(tmp_path, capsys):
+    out = tmp_path / "out"
+    assert main(["demo", "--quick", "--out", str(out)]) == 0
+    files = set(_files(out))
+    for name in ("fig7_friction_reduction.csv", "friction_reduction.csv", "friction_reduction.png",
+                 "table5_refit.csv", "fig11_power_law.png", "fig7_dry/summary.csv", "fig7_dry/dahl.csv",
+                 "fig7_dry/coulomb.csv", "fig7_dry/friction_force.png", "fig7_obm/friction_force.png",
+                 "fig7_obm/summary.csv"):
+        assert name in files
+
+    reduction = pd.read_csv(out / "fig7_friction_reduction.csv")
+    assert list(reduction["law"]) == ["Coulomb", "Dahl", "Coulomb", "Dahl"]
+    assert list(reduction["table4_run"]) == ["VS3", "VS3", "VS17", "VS17"]
+    assert list(reduction["F_df_table4_N"]) == [9.27, 9.27, 1.02, 1.02]
+    dry = pd.read_csv(out / "fig7_dry" / "summary.csv").set_index("case")
+    assert reduction["F_df_sim_N"].iloc[1] == pytest.approx(dry.loc["dahl", "F_df_N"], rel=1e-9)
+    # without vibration the steady sliding force is mu F_N
+    assert reduction["F_sf_sim_N"].to_numpy() == pytest.approx([36.9, 36.9, 8.1, 8.1], rel=1e-3)
+
+    sweep = pd.read_csv(out / "friction_reduction.csv")
+    assert sweep["kinematic_coulomb"].to_numpy() == pytest.approx(sweep["coulomb_closed_form"].to_numpy(),
+                                                                  abs=1e-6)
+    stdout = capsys.readouterr().out
+    for text in ("Fig. 7 cases", "VS3", "VS17", "Table 5 refit", "-0.36513", "Coulomb exact"):
+        assert text in stdout
+
+
+def test_demo_builtin_scenarios_are_the_example_files():
+    # one definition: the demo's Fig. 7 scenarios are the example files, byte for byte
+    for name, text in demo.BUILTIN_SCENARIOS.items():
+        assert (EXAMPLES / f"{name}.toml").read_text() == text
+        assert demo.builtin_scenario(name).cases == scenario.load(EXAMPLES / f"{name}.toml").cases
+
+
+# ------------------------------------------------------------------------------------------------- entry points
+def test_help_and_version_in_process(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0 and capsys.readouterr().out.strip() == f"frictionsim {fs.__version__}"
+    with pytest.raises(SystemExit) as info:
+        main(["run", "--help"])
+    assert info.value.code == 0 and "SCENARIO" in capsys.readouterr().out.upper()
+    assert main([]) == 2
+
+
+def test_console_script_subprocess(tmp_path):
+    script = Path(sys.executable).parent / "frictionsim"
+    command = [str(script)] if script.exists() else [sys.executable, "-m", "frictionsim"]
+    done = subprocess.run(command + ["--help"], capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert done.returncode == 0
+    for word in ("run", "demo", "fit-table5", "--version"):
+        assert word in done.stdout
+    done = subprocess.run([sys.executable, "-m", "frictionsim", "run", "missing.toml"], capture_output=True,
+                          text=True, timeout=60, cwd=tmp_path)
+    assert done.returncode == 2 and done.stderr.startswith("error: missing.toml: ")
+    assert os.listdir(tmp_path) == []
