@@ -41,11 +41,18 @@ double simulate_case(const AxialRigParams& p, Law law, const std::filesystem::pa
     SolverOptions o;
     o.rtol = 1e-8;
     o.atol = 1e-12;
-    for (int i = 0; i <= 4000; ++i) o.output_times.push_back(t_end * i / 4000);
+    // The cycle window's start is an output time too: the mean then differences the friction impulse at a
+    // solver-accurate point instead of interpolating it between grid points.
+    const double window_start = t_end - 10 * period;
+    for (int i = 0; i <= 4000; ++i) {
+        const double t = t_end * i / 4000;
+        if (t > window_start && o.output_times.back() < window_start) o.output_times.push_back(window_start);
+        o.output_times.push_back(t);
+    }
     const Result r = simulate(rig, t_end, o);
     steps = r.stats.steps;
     write_csv(csv, r);
-    return mean_friction_over_cycles(r, period, t_end - 10 * period, 10);  // last 10 whole cycles
+    return mean_friction_over_cycles(r, period, window_start, 10);  // last 10 whole cycles
 }
 
 }  // namespace
