@@ -131,6 +131,26 @@ TEST_CASE("a guard that is zero right after a switch and heads into its triggeri
     CHECK(r.state(2, 0) == Approx(1.0).margin(1e-12));
 }
 
+TEST_CASE("a guard that leaves zero to its quiet side and returns within the first step still fires", "[solver]") {
+    // v_r = t (t - 1e-3) starts at zero heading negative (mode slip_negative, guard -v_r > 0), and turns positive
+    // at t = 1e-3. A first step of 5e-3 spans the whole excursion: the return crossing must still be located.
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf, Method::cvode_adams);
+    INFO(method_name(method));
+    auto v_r = [](double t) { return t * (t - 1e-3); };
+    const KinematicRig<Coulomb, decltype(v_r)> rig(Coulomb(0.5), v_r, ConstantSignal(10.0));
+    SolverOptions o = options_for(method);
+    o.initial_step = 5e-3;
+    const Result r = simulate(rig, 0.02, o);
+    REQUIRE(r.events.size() == 1);
+    CHECK(r.events[0].time == Approx(1e-3).margin(1e-12));
+    CHECK(r.events[0].mode_before == slip_negative);
+    CHECK(r.events[0].mode_after == slip_positive);
+    CHECK(r.mode.back() == slip_positive);
+    // impulse: -5 N over [0, 1e-3], +5 N after
+    CHECK(r.state(r.rows() - 1, KinematicRig<Coulomb, decltype(v_r)>::friction_impulse) ==
+          Approx(-5.0 * 1e-3 + 5.0 * (0.02 - 1e-3)).margin(1e-10));
+}
+
 TEST_CASE("simultaneous switches are handled in one resolution", "[solver]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));

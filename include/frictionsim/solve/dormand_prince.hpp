@@ -195,19 +195,20 @@ private:
         if constexpr (G == 0) {
             return {t_, false};
         } else {
-            std::array<double, G> g1{};
+            std::array<double, G> g1{}, reference{};
             guards(t_, y_, g1);
             double t_root = t_;
             bool any = false;
             for (std::size_t i = 0; i < G; ++i) {
-                if (masked_[i]) continue;
-                if (crossing(g_[i], g1[i], sys_.guard_direction(i, mode_)) == 0) continue;
+                reference[i] = reference_value(i, g1[i]);
+                if (masked_[i] && reference[i] == 0.0) continue;  // still on its surface
+                if (crossing(reference[i], g1[i], sys_.guard_direction(i, mode_)) == 0) continue;
                 any = true;
-                t_root = std::min(t_root, bracket_root(i, g_[i], g1[i]));
+                t_root = std::min(t_root, bracket_root(i, reference[i], g1[i]));
             }
             if (!any) {
                 for (std::size_t i = 0; i < G; ++i) {
-                    if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // first non-zero sign is its reference
+                    if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
                     g_[i] = g1[i];
                 }
                 return {t_, false};
@@ -219,14 +220,31 @@ private:
                 rhs(t_, y_, k1_);
             }
             for (std::size_t i = 0; i < G; ++i)
-                roots_[i] = masked_[i] ? 0 : crossing(g_[i], g1[i], sys_.guard_direction(i, mode_));
+                roots_[i] = masked_[i] && reference[i] == 0.0
+                                ? 0
+                                : crossing(reference[i], g1[i], sys_.guard_direction(i, mode_));
             return {t_, true};
         }
     }
 
-    // Guard i changes sign on (t_prev_, t_]: Illinois false position on the dense output. Returns the right
-    // end of the final bracket, where the guard has already crossed (as CVODE does), to within CVODE's ttol.
-    double bracket_root(std::size_t i, double g_lo, double g_hi) {
+    // The value a crossing of guard i is judged against. A guard masked since a restart (it sat at zero and the
+    // hybrid loop's probe found it leaving towards its non-triggering side) counts as just off zero on that
+    // side once it has moved: if a step ends with it on the triggering side, it went out and came back within
+    // the step, and that return is a switch to locate. Taking its first non-zero value as the reference
+    // instead would miss it. Returns 0 while a masked guard has not moved, or has no non-triggering side.
+    double reference_value(std::size_t i, double g_now) const {
+        if (!masked_[i]) return g_[i];
+        if (g_now == 0.0) return 0.0;
+        const int dir = sys_.guard_direction(i, mode_);
+        if (dir == 0) return 0.0;  // both sides trigger: the probe would have fired had it moved
+        return dir < 0 ? std::numeric_limits<double>::denorm_min() : -std::numeric_limits<double>::denorm_min();
+    }
+
+    // Guard i crossed from `reference` to g_hi on (t_prev_, t_]: Illinois false position on the dense output.
+    // Returns the right end of the final bracket, where the guard has already crossed (as CVODE does), to within
+    // CVODE's ttol.
+    double bracket_root(std::size_t i, double reference, double g_hi) {
+        double g_lo = reference;
         double lo = t_prev_, hi = t_;
         const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
         const int dir = sys_.guard_direction(i, mode_);
@@ -237,7 +255,7 @@ private:
             if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
             interpolate(tm, ytmp_.data());
             guards(tm, ytmp_, g);
-            if (crossing(g_[i], g[i], dir) != 0) {
+            if (crossing(reference, g[i], dir) != 0) {
                 hi = tm;
                 g_hi = g[i];
                 if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end

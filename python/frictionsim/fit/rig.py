@@ -1,0 +1,216 @@
+"""Rig-level identification: the friction law of paper 000's axial vibrating-sliding rig from its drive force.
+
+Paper 000 (sec 4.2) finds the Dahl tangential contact stiffness k_t "one of the most complicated parameters
+that need to be determined" and points to genetic / particle-swarm searches. The quantity its rig measures is
+the drive force of eq 7, F_d = k_d (v_d t - x), not the friction force itself. :func:`identify_axial_rig`
+therefore fits the law inside the full rig model (eqs 5-9, ``fs.AxialVibrationRig``): every residual
+evaluation simulates the rig with ``output_times=t`` and compares ``rig.drive_force(t, x(t))`` with the
+measured drive force. The search, the uncertainty (covariance s^2 (J^T J)^-1 with the log-transform chain
+rule) and the identifiability flags are those of :mod:`frictionsim.fit.identify` (one shared core).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Dict, List, Mapping, Optional, Sequence
+
+import numpy as np
+
+from .._core import AxialVibrationRig, Dahl
+from .identify import (
+    Bounds,
+    IdentificationResult,
+    _build_spec,
+    _canonical,
+    _check_method,
+    _fit,
+    _force_atol,
+    _law_def,
+    _options,
+    _reject,
+    _resolve_mu_static,
+    _result,
+    _simulate,
+    _simulate_kwargs,
+    _time,
+    _user_bounds,
+    _user_values,
+    _vector,
+    _weights,
+)
+
+__all__ = ["identify_axial_rig"]
+
+
+def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
+                       fit: Sequence[str] = ("mu", "tangential_stiffness"),
+                       mass: float = 0.2, drive_stiffness: float = 2e4, sliding_velocity: float = 1e-3,
+                       amplitude: float = 5e-3, frequency: float = 17.0, normal_force: float = 90.0,
+                       gravity: bool = False, gravitational_acceleration: float = 9.81,
+                       initial_position: Optional[float] = None, initial_velocity: float = 0.0,
+                       method: str = "least_squares", bounds: Optional[Bounds] = None,
+                       initial_guess: Optional[Mapping[str, float]] = None, transient: float = 0.0,
+                       weights: Any = None, rtol: float = 1e-7, atol: Optional[float] = None,
+                       simulate_options: Optional[Mapping[str, Any]] = None,
+                       **solver_options: Any) -> IdentificationResult:
+    """Fit friction-law parameters (default the Dahl mu and k_t) of the axial vibrating-sliding rig to a
+    measured drive-force record F_d(t) = k_d (v_d t - x) [N] (paper 000, eqs 5-9).
+
+    Parameters
+    ----------
+    t : array, s
+        Sample times, strictly increasing; the rig starts at t[0] with ``initial_position`` and
+        ``initial_velocity`` (record from the start of the run, transient included).
+    drive_force : array, N
+        Measured drive force at ``t``.
+    law : "dahl" | "lugre" | "stribeck"
+        The friction law inside the rig.
+    fit : sequence of str
+        Parameters to estimate (e.g. ("mu", "tangential_stiffness") or with "exponent"); the others are held
+        at ``initial_guess`` values or the law's defaults (Dahl exponent 1).
+    mass, drive_stiffness, sliding_velocity, amplitude, frequency, normal_force, gravity,
+    gravitational_acceleration, initial_position, initial_velocity
+        The rig (``fs.AxialVibrationRig``): m [kg], k_d [N/m], v_d [m/s], u0 [m], f [Hz], F_N [N], ...
+    method : {"least_squares", "differential_evolution"}
+        Local least squares (after a coarse scan of the fitted parameters that have no initial guess), or the
+        global differential-evolution search (deterministic for ``seed``) polished by least squares.
+    bounds : dict, optional
+        {name: (lower, upper)}, physical units (default ``LAW_PARAMETERS``); a positive lower bound makes the
+        search logarithmic.
+    initial_guess : dict, optional
+        Starting values of fitted parameters and values of held ones.
+    transient : float, s
+        Samples before t[0] + transient are simulated but not fitted.
+    weights : array, optional
+        Residual weights (1/sigma_i) at ``t``.
+    rtol : float
+        Relative tolerance of each run.
+    atol : float, N, optional
+        Absolute tolerance on forces (default 1e-6 of the largest measured drive force); the position,
+        velocity and law-state tolerances are scaled from it (atol / k_d, atol / k_t, ...).
+    simulate_options : dict, optional
+        Further keywords for :func:`frictionsim.simulate`.
+    **solver_options
+        As for :func:`frictionsim.fit.identify_dahl` (seed, polish, maxiter, popsize, tol, workers, ...).
+
+    Returns
+    -------
+    IdentificationResult
+        ``signal_name`` "drive_force"; ``rig`` is the AxialVibrationRig at the solution.
+
+    Raises
+    ------
+    InvalidParameterError (a ValueError)
+        Bad input; ``.parameter`` names it.
+    """
+    started = time.perf_counter()
+    lawdef = _law_def(law)
+    method = _check_method(method)
+    opts = _options(solver_options)
+    t = _time(t)
+    measured_all = _vector("drive_force", drive_force, t.size)
+    w_all = _weights(weights, t.size)
+    rig_kwargs: Dict[str, Any] = dict(mass=mass, drive_stiffness=drive_stiffness, sliding_velocity=sliding_velocity,
+                                      amplitude=amplitude, frequency=frequency, normal_force=normal_force,
+                                      gravity=bool(gravity), gravitational_acceleration=gravitational_acceleration,
+                                      initial_position=initial_position, initial_velocity=initial_velocity)
+    probe = AxialVibrationRig(Dahl(0.4, 4e4), **rig_kwargs)  # the engine checks the rig (names the parameter)
+    if not (isinstance(transient, (int, float)) and math.isfinite(transient) and transient >= 0):
+        _reject(f"transient must be a non-negative number of seconds (got {transient!r})", "transient")
+    window = t >= t[0] + transient
+    if np.count_nonzero(window) < 3:
+        _reject(f"transient = {transient} s leaves fewer than 3 samples to fit", "transient")
+    sim_kwargs = _simulate_kwargs(simulate_options, rtol, atol)
+
+    # what is fitted, what is held
+    if isinstance(fit, str):
+        fit = (fit,)
+    fitted_names: List[str] = []
+    for key in fit:
+        name = _canonical(lawdef, str(key), "fit")
+        if name == "mu_static":
+            _reject("fit: mu_static is fitted as mu_static_excess = mu_static - mu; name that", "fit")
+        if name in fitted_names:
+            _reject(f"fit names {name} twice", "fit")
+        fitted_names.append(name)
+    if not fitted_names:
+        _reject("fit must name at least one parameter", "fit")
+    n_fit_samples = int(np.count_nonzero(window if w_all is None else window & (w_all > 0)))
+    if len(fitted_names) >= n_fit_samples:
+        _reject(f"t: {n_fit_samples} fitted samples cannot determine {len(fitted_names)} parameters", "t")
+    speed = max(probe.vibration_velocity_amplitude, probe.sliding_velocity, 1e-3)
+    all_bounds = _user_bounds(lawdef, bounds, {}, float(np.max(np.abs(measured_all))) or 1.0, speed)
+    values = _user_values(lawdef, initial_guess, "initial_guess")
+    _resolve_mu_static(values, values.get("mu"), "initial_guess")
+    user_guess = {k: v for k, v in values.items() if k in fitted_names}
+    fixed: Dict[str, float] = {}
+    for p in lawdef.params:
+        if p.name in fitted_names:
+            continue
+        if p.name in values:
+            fixed[p.name] = values[p.name]
+        elif p.default is not None:
+            fixed[p.name] = p.default
+        else:
+            _reject(f"initial_guess[{p.name!r}]: {lawdef.name} needs a value for {p.name} when it is not fitted",
+                    f"initial_guess[{p.name!r}]")
+
+    weight_force = probe.mass * probe.gravitational_acceleration if probe.gravity else 0.0
+    level = float(np.quantile(np.abs(measured_all - weight_force), 0.95))
+    guess: Dict[str, float] = {"mu": max(level / probe.normal_force, 1e-3), "tangential_stiffness": 1e5,
+                               "exponent": 1.0, "mu_static_excess": 0.1 * max(level / probe.normal_force, 1e-3),
+                               "stribeck_velocity": 1e-3, "bristle_stiffness": 1e5, "bristle_damping": 0.0,
+                               "viscous_damping": 0.0, "shape_exponent": 2.0, "viscous_coefficient": 0.0}
+    guess.update(user_guess)
+    spec = _build_spec(lawdef, fitted_names, guess, fixed, all_bounds, {}, {}, user_guess)
+    scan_names = [name for name in fitted_names if name not in user_guess and
+                  (lawdef.param(name).scan or name == "mu")]
+    scan_names.sort(key=lambda name: 0 if name in ("tangential_stiffness", "bristle_stiffness") else 1)
+
+    measured = measured_all[window]
+    w = None if w_all is None else w_all[window]
+    force_atol = _force_atol(atol, measured_all)
+    duration = float(t[-1] - t[0])
+
+    def rig_for(q: Mapping[str, float]) -> AxialVibrationRig:
+        return AxialVibrationRig(lawdef.build(lawdef.physical(q)), **rig_kwargs)
+
+    def model(q: Mapping[str, float]) -> np.ndarray:
+        rig = rig_for(q)
+        kwargs = dict(sim_kwargs)
+        if "atol_per_state" not in kwargs:
+            stiffness = lawdef.state_stiffness(lawdef.physical(q))
+            kwargs["atol_per_state"] = _rig_atol(rig.state_names, force_atol, probe.drive_stiffness, stiffness,
+                                                 duration, speed, 2.0 * math.pi * probe.frequency)
+        result = _simulate(rig, t, kwargs,
+                           relative_velocity=lambda r: r["velocity"] - rig.surface_velocity(r.t))
+        if result.t.size != t.size:
+            raise IndexError("the run did not record every requested time")
+        return np.asarray(rig.drive_force(result.t, result["position"]))[window]
+
+    result_fit = _fit(model, measured, w, spec, method=method, opts=opts, scan_names=scan_names,
+                      x0_given=bool(user_guess))
+    return _result(result_fit, lawdef, method=method, experiment="axial vibration rig", signal_name="drive_force",
+                   t=t[window], measured=measured, rig=rig_for(result_fit.q), initial_state=None, started=started)
+
+
+def _rig_atol(names: Sequence[str], force_atol: float, drive_stiffness: float, law_stiffness: float,
+              duration: float, speed: float, omega: float) -> List[float]:
+    """Absolute tolerances per state, scaled so each contributes ~force_atol [N] to the drive/friction force."""
+    position = force_atol / drive_stiffness
+    out = []
+    for name in names:
+        if name == "position":
+            out.append(position)
+        elif name == "velocity":
+            out.append(position * omega)
+        elif name.endswith("deflection"):
+            out.append(force_atol / law_stiffness if law_stiffness > 0 else position)
+        elif name == "friction_impulse":
+            out.append(force_atol * duration)
+        elif name.endswith("work"):
+            out.append(force_atol * duration * speed)
+        else:
+            out.append(force_atol)
+    return out
