@@ -2,7 +2,7 @@
 
 1. Fig. 7: the dry case (Table 4 run VS3: u0 = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N) and the OBM case
    (VS17: u0 = 4 mm, f = 20 Hz, F_N = 30 N) with Coulomb (eq 8) and Dahl (eq 9) friction side by side: each is a
-   scenario file (:data:`BUILTIN_SCENARIOS`, identical to examples/scenarios/fig7_*.toml) run exactly as
+   scenario file (:data:`BUILTIN_SCENARIOS`, package data that examples/scenarios/fig7_*.toml link to) run as
    ``frictionsim run`` runs it, into ``<out>/fig7_dry/`` and ``<out>/fig7_obm/``.
 2. Friction reduction: the mean friction F_df with vibration against the same case without vibration (u0 = 0,
    F_sf), per law, next to Table 4's measured F_df and F_sf and the Table 5 power law (eq 17) for those runs
@@ -27,6 +27,7 @@ import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
+from importlib import resources
 from typing import Dict, List, Sequence, Tuple, Union
 
 import numpy as np
@@ -36,91 +37,8 @@ from .scenario import AnalysisSpec, Case, RigSpec, Scenario, ScenarioRun, Solver
 
 __all__ = ["BUILTIN_SCENARIOS", "Demo", "builtin_scenario", "compute", "format_table", "table5_refit"]
 
-#: The Fig. 7 scenarios, as TOML (the text of examples/scenarios/<name>.toml).
-BUILTIN_SCENARIOS: Dict[str, str] = {
-    "fig7_dry_coulomb_vs_dahl": """# Paper 000, Fig. 7(a): dry shale on 45 steel, Table 4 run VS3 (u = 5 mm, f = 17 Hz, v_d = 60 mm/min,
-# F_N = 90 N), with Coulomb (eq 8) and Dahl (eq 9) friction side by side on the axial vibrating-sliding rig
-# (eqs 5-7). Scenario choices of examples/axial_rig_demo.cpp: m = 0.2 kg and k_d = 2e4 N/m (the paper gives
-# neither), mu = 0.41 (Table 4: F_sf / F_N = 0.4097), Dahl k_t = 40 N/mm (Fig. 10) with alpha = 1, 2 s
-# simulated, mean friction F_df over the last 10 whole cycles. Fig. 7's caption prints v_d = 60 mm/s; Table 4
-# (VS3) gives 60 mm/min = 1 mm/s, used here.
-# This file is also `frictionsim demo`'s built-in Fig. 7(a) scenario (frictionsim/demo.py, kept identical).
-#   frictionsim run examples/scenarios/fig7_dry_coulomb_vs_dahl.toml [--out DIR]
-title = "Paper 000 Fig. 7(a): dry, u = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N (Table 4 VS3)"
-
-[rig]
-type = "axial"
-mass = 0.2                  # m [kg]
-drive_stiffness = 2.0e4     # k_d [N/m]
-sliding_velocity = 1.0e-3   # v_d [m/s] = 60 mm/min
-amplitude = 5.0e-3          # u0 [m]
-frequency = 17.0            # f [Hz]
-normal_force = 90.0         # F_N [N]
-
-[solver]
-t_end = 2.0                 # s
-rtol = 1e-8
-atol = 1e-12
-output_points = 4001
-
-[analysis]
-cycles = 10                 # F_df over the last 10 whole cycles before t_end
-
-[output]
-directory = "out/fig7_dry"
-
-[[case]]
-name = "coulomb"
-lubricant = "dry"
-friction = { type = "coulomb", mu = 0.41 }
-
-[[case]]
-name = "dahl"
-lubricant = "dry"
-friction = { type = "dahl", mu = 0.41, tangential_stiffness = 4.0e4 }   # k_t [N/m] = 40 N/mm
-""",
-    "fig7_obm": """# Paper 000, Fig. 7(b): shale on 45 steel lubricated with oil-based mud (OBM), Table 4 run VS17 (u = 4 mm,
-# f = 20 Hz, v_d = 60 mm/min, F_N = 30 N), with Coulomb (eq 8) and Dahl (eq 9) friction side by side on the
-# axial vibrating-sliding rig (eqs 5-7). Scenario choices of examples/axial_rig_demo.cpp: m = 0.2 kg and
-# k_d = 2e4 N/m (the paper gives neither), mu = 0.27 (Table 4: F_sf / F_N = 0.2700; section 2.4.1), Dahl
-# k_t = 40 N/mm (Fig. 10) with alpha = 1, 2 s simulated, mean friction F_df over the last 10 whole cycles.
-# Fig. 7's caption prints v_d = 60 mm/s; Table 4 (VS17) gives 60 mm/min = 1 mm/s, used here.
-# This file is also `frictionsim demo`'s built-in Fig. 7(b) scenario (frictionsim/demo.py, kept identical).
-#   frictionsim run examples/scenarios/fig7_obm.toml [--out DIR]
-title = "Paper 000 Fig. 7(b): OBM, u = 4 mm, f = 20 Hz, v_d = 60 mm/min, F_N = 30 N (Table 4 VS17)"
-
-[rig]
-type = "axial"
-mass = 0.2                  # m [kg]
-drive_stiffness = 2.0e4     # k_d [N/m]
-sliding_velocity = 1.0e-3   # v_d [m/s] = 60 mm/min
-amplitude = 4.0e-3          # u0 [m]
-frequency = 20.0            # f [Hz]
-normal_force = 30.0         # F_N [N]
-
-[solver]
-t_end = 2.0                 # s
-rtol = 1e-8
-atol = 1e-12
-output_points = 4001
-
-[analysis]
-cycles = 10                 # F_df over the last 10 whole cycles before t_end
-
-[output]
-directory = "out/fig7_obm"
-
-[[case]]
-name = "coulomb"
-lubricant = "obm"
-friction = { type = "coulomb", mu = 0.27 }
-
-[[case]]
-name = "dahl"
-lubricant = "obm"
-friction = { type = "dahl", mu = 0.27, tangential_stiffness = 4.0e4 }   # k_t [N/m] = 40 N/mm
-""",
-}
+#: The built-in scenarios: package data (python/frictionsim/scenarios/), linked from examples/scenarios/.
+BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm")
 #: output subdirectory -> built-in scenario
 FIG7 = {"fig7_dry": "fig7_dry_coulomb_vs_dahl", "fig7_obm": "fig7_obm"}
 
@@ -133,7 +51,8 @@ NO_VIBRATION_T_END = 12.0  #: s; without vibration the Dahl force approaches mu 
 
 def builtin_scenario(name: str) -> Scenario:
     """A built-in scenario, parsed by :func:`frictionsim.scenario.loads` (the one schema)."""
-    return loads(BUILTIN_SCENARIOS[name], source=f"<built-in {name}.toml>", name=name)
+    text = resources.files("frictionsim").joinpath("scenarios", f"{name}.toml").read_text(encoding="utf-8")
+    return loads(text, source=f"<built-in {name}.toml>", name=name)
 
 
 def format_table(frame, columns: Sequence[Tuple[str, str, str]]) -> str:

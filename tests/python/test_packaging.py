@@ -24,7 +24,7 @@ def test_extension_links_sundials_statically_where_static_libraries_exist():
 
 def test_package_files_are_installed():
     package = resources.files("frictionsim")
-    for name in ("py.typed", "_core.pyi", "data/table4.csv", "data/table3.csv"):
+    for name in ("py.typed", "_core.pyi", "data/table4.csv", "data/table3.csv", "scenarios/fig7_obm.toml"):
         assert package.joinpath(name).is_file(), name
 
 
