@@ -45,20 +45,33 @@ def save(figure, path: Union[str, Path], dpi: int = 120) -> Path:
     return path
 
 
-def friction_force_figure(traces: Sequence, *, title: str = "", window: Window = None):
-    """Friction force F_F [N] against time t [s], one line per trace (paper 000 Fig. 7 layout)."""
+def _titled(title: str, subtitle: str) -> str:
+    return f"{title}\n{subtitle}" if title else subtitle
+
+
+def _time_series_figure(traces: Sequence, column: str, ylabel: str, subtitle: str, *, title: str,
+                        window: Window, zero_line: bool = False):
+    """``column`` against time t [s], one line per trace that has it."""
     figure, ax = _figure()
     for label, frame in traces:
-        part = _window(frame, window)
-        ax.plot(part["t"], part["friction_force"], label=label, linewidth=1.2)
-    ax.axhline(0.0, color="0.6", linewidth=0.6)
+        if column in frame:
+            part = _window(frame, window)
+            ax.plot(part["t"], part[column], label=label, linewidth=1.2)
+    if zero_line:
+        ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel("time t [s]")
-    ax.set_ylabel("friction force $F_F$ [N]")
-    ax.set_title(f"{title}\nfriction force vs time (cf. paper 000 Fig. 7)" if title else
-                 "friction force vs time (cf. paper 000 Fig. 7)", fontsize=10)
+    ax.set_ylabel(ylabel)
+    ax.set_title(_titled(title, subtitle), fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend()
     return figure
+
+
+def friction_force_figure(traces: Sequence, *, title: str = "", window: Window = None):
+    """Friction force F_F [N] against time t [s], one line per trace (paper 000 Fig. 7 layout)."""
+    return _time_series_figure(traces, "friction_force", "friction force $F_F$ [N]",
+                               "friction force vs time (cf. paper 000 Fig. 7)", title=title, window=window,
+                               zero_line=True)
 
 
 def hysteresis_figure(traces: Sequence, *, title: str = "", window: Window = None):
@@ -74,25 +87,14 @@ def hysteresis_figure(traces: Sequence, *, title: str = "", window: Window = Non
         ax.set_ylabel("friction force $F_F$ [N]")
         ax.grid(True, alpha=0.3)
         ax.legend()
-    figure.suptitle(f"{title}\nfriction hysteresis loops (paper 000 eqs 8-9)" if title else
-                    "friction hysteresis loops (paper 000 eqs 8-9)", fontsize=10)
+    figure.suptitle(_titled(title, "friction hysteresis loops (paper 000 eqs 8-9)"), fontsize=10)
     return figure
 
 
 def drive_force_figure(traces: Sequence, *, title: str = "", window: Window = None):
     """Drive force F_d = k_d (v_d t - x) [N] against time [s] (axial rigs only; paper 000 eq 7, Fig. 4-5)."""
-    figure, ax = _figure()
-    for label, frame in traces:
-        if "drive_force" in frame:
-            part = _window(frame, window)
-            ax.plot(part["t"], part["drive_force"], label=label, linewidth=1.2)
-    ax.set_xlabel("time t [s]")
-    ax.set_ylabel("drive force $F_d$ [N]")
-    ax.set_title(f"{title}\ndrive force vs time (paper 000 eq 7, cf. Figs. 4-5)" if title else
-                 "drive force vs time (paper 000 eq 7, cf. Figs. 4-5)", fontsize=10)
-    ax.grid(True, alpha=0.3)
-    ax.legend()
-    return figure
+    return _time_series_figure(traces, "drive_force", "drive force $F_d$ [N]",
+                               "drive force vs time (paper 000 eq 7, cf. Figs. 4-5)", title=title, window=window)
 
 
 def power_law_figure(table4, fits, printed=None):
