@@ -11,6 +11,7 @@ import pytest
 
 import frictionsim as fs
 from frictionsim.fit import (
+    LAW_PARAMETERS,
     IdentificationResult,
     identify,
     identify_axial_rig,
@@ -317,6 +318,14 @@ def test_bad_rig_input_names_the_parameter(change, parameter):
     with pytest.raises(ValueError) as excinfo:
         identify_axial_rig(t, drive, **args)
     assert parameter_of(excinfo) == parameter
+
+
+def test_public_names():
+    """fs.fit.identify is the dispatching function (no module of that name shadows it)."""
+    assert fs.fit.identify is identify and callable(identify)
+    assert set(LAW_PARAMETERS) == {"dahl", "lugre", "stribeck"}
+    assert LAW_PARAMETERS["dahl"]["tangential_stiffness"] == ("k_t", "N/m", (10.0, 1e10))
+    assert fs.fit.IdentificationResult is IdentificationResult
 
 
 def test_unknown_law_and_mu_static_bounds():

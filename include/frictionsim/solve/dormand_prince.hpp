@@ -77,6 +77,8 @@ public:
 
 private:
     // Dormand-Prince 5(4) tableau.
+    /// Points per step (the end included) at which the guards are checked on the dense output.
+    static constexpr int kScanPoints = 4;
     static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
     static constexpr double a21 = 1.0 / 5;
     static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
@@ -191,20 +193,35 @@ private:
 
     // After an accepted step: did a switching function cross zero in its direction? If so, find the earliest
     // crossing on the dense output (Illinois), cut the step there and report every guard that has crossed.
+    // The guards are also sampled at interior points of the dense output: a guard that crosses and comes back
+    // within one step has the same sign at both ends (a short reversal of v_r), and checking the ends alone
+    // would miss that switch and leave the law on the wrong branch (cf. SciML's interp_points).
     StepResult locate_roots() {
         if constexpr (G == 0) {
             return {t_, false};
         } else {
-            std::array<double, G> g1{}, reference{};
+            std::array<double, G> g1{}, reference{}, g_lo{}, g_k{};
             guards(t_, y_, g1);
-            double t_root = t_;
+            for (std::size_t i = 0; i < G; ++i) reference[i] = reference_value(i, g1[i]);
+            double t_root = t_, lo = t_prev_;
+            g_lo = reference;
             bool any = false;
-            for (std::size_t i = 0; i < G; ++i) {
-                reference[i] = reference_value(i, g1[i]);
-                if (masked_[i] && reference[i] == 0.0) continue;  // still on its surface
-                if (crossing(reference[i], g1[i], sys_.guard_direction(i, mode_)) == 0) continue;
-                any = true;
-                t_root = std::min(t_root, bracket_root(i, reference[i], g1[i]));
+            for (int k = 1; k <= kScanPoints && !any; ++k) {
+                const double t_k = k == kScanPoints ? t_ : t_prev_ + (t_ - t_prev_) * k / kScanPoints;
+                if (k == kScanPoints) {
+                    g_k = g1;
+                } else {
+                    interpolate(t_k, ytmp_.data());
+                    guards(t_k, ytmp_, g_k);
+                }
+                for (std::size_t i = 0; i < G; ++i) {
+                    if (masked_[i] && reference[i] == 0.0) continue;  // still on its surface
+                    if (crossing(reference[i], g_k[i], sys_.guard_direction(i, mode_)) == 0) continue;
+                    any = true;
+                    t_root = std::min(t_root, bracket_root(i, reference[i], lo, t_k, g_lo[i], g_k[i]));
+                }
+                lo = t_k;
+                g_lo = g_k;
             }
             if (!any) {
                 for (std::size_t i = 0; i < G; ++i) {
@@ -240,12 +257,10 @@ private:
         return dir < 0 ? std::numeric_limits<double>::denorm_min() : -std::numeric_limits<double>::denorm_min();
     }
 
-    // Guard i crossed from `reference` to g_hi on (t_prev_, t_]: Illinois false position on the dense output.
-    // Returns the right end of the final bracket, where the guard has already crossed (as CVODE does), to within
-    // CVODE's ttol.
-    double bracket_root(std::size_t i, double reference, double g_hi) {
-        double g_lo = reference;
-        double lo = t_prev_, hi = t_;
+    // Guard i crossed from `reference` (not yet at lo, where it is g_lo) to g_hi at hi, within the last step:
+    // Illinois false position on the dense output. Returns the right end of the final bracket, where the guard
+    // has already crossed (as CVODE does), to within CVODE's ttol.
+    double bracket_root(std::size_t i, double reference, double lo, double hi, double g_lo, double g_hi) {
         const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
         const int dir = sys_.guard_direction(i, mode_);
         int side = 0;

@@ -1,3 +1,20 @@
+"""Fitting: the Table 5 power-law refit, and friction-law identification through the C++ engine.
+
+Identification by output-error least squares, one module a job:
+
+* :mod:`.kinematic`: identify_dahl / identify_lugre / identify_stribeck / identify on the kinematic rig;
+* :mod:`.rig`: identify_axial_rig, the law inside paper 000's axial vibrating-sliding rig;
+* :mod:`.parameters` (each law's parameters), :mod:`.search_space` (log / linear search variables, bounds),
+  :mod:`.validation` (the record), :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`,
+  :mod:`.solver` (scan, least_squares, differential_evolution), :mod:`.uncertainty` (covariance,
+  identifiability), :mod:`.result` (IdentificationResult).
+"""
+
 from .power_law import PowerLawFit, fit_power_law
-from .identify import IdentificationResult, identify, identify_dahl, identify_lugre, identify_stribeck
+from .kinematic import identify, identify_dahl, identify_lugre, identify_stribeck
+from .parameters import LAW_PARAMETERS
+from .result import IdentificationResult
 from .rig import identify_axial_rig
+
+__all__ = ["PowerLawFit", "fit_power_law", "IdentificationResult", "LAW_PARAMETERS", "identify", "identify_dahl",
+           "identify_lugre", "identify_stribeck", "identify_axial_rig"]

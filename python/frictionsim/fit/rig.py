@@ -5,8 +5,9 @@ that need to be determined" and points to genetic / particle-swarm searches. The
 the drive force of eq 7, F_d = k_d (v_d t - x), not the friction force itself. :func:`identify_axial_rig`
 therefore fits the law inside the full rig model (eqs 5-9, ``fs.AxialVibrationRig``): every residual
 evaluation simulates the rig with ``output_times=t`` and compares ``rig.drive_force(t, x(t))`` with the
-measured drive force. The search, the uncertainty (covariance s^2 (J^T J)^-1 with the log-transform chain
-rule) and the identifiability flags are those of :mod:`frictionsim.fit.identify` (one shared core).
+measured drive force. The search (:mod:`frictionsim.fit.solver`), the uncertainty (covariance s^2 (J^T J)^-1
+with the log-transform chain rule) and the identifiability flags (:mod:`frictionsim.fit.uncertainty`) are
+those of the kinematic identification (:mod:`frictionsim.fit.kinematic`): one shared core.
 """
 
 from __future__ import annotations
@@ -18,27 +19,12 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 import numpy as np
 
 from .._core import AxialVibrationRig, Dahl
-from .identify import (
-    Bounds,
-    IdentificationResult,
-    _build_spec,
-    _canonical,
-    _check_method,
-    _fit,
-    _force_atol,
-    _law_def,
-    _options,
-    _reject,
-    _resolve_mu_static,
-    _result,
-    _simulate,
-    _simulate_kwargs,
-    _time,
-    _user_bounds,
-    _user_values,
-    _vector,
-    _weights,
-)
+from .forward_model import _force_atol, _simulate, _simulate_kwargs, _with_state_atol
+from .parameters import _canonical, _stiffness_first
+from .result import IdentificationResult, _result
+from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds, _user_values
+from .solver import _fit, _fit_setup
+from .validation import _record, _reject, _weights
 
 __all__ = ["identify_axial_rig"]
 
@@ -105,11 +91,8 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
         Bad input; ``.parameter`` names it.
     """
     started = time.perf_counter()
-    lawdef = _law_def(law)
-    method = _check_method(method)
-    opts = _options(solver_options)
-    t = _time(t)
-    measured_all = _vector("drive_force", drive_force, t.size)
+    lawdef, method, opts = _fit_setup(law, method, solver_options)
+    t, measured_all = _record(t, drive_force, "drive_force")
     w_all = _weights(weights, t.size)
     rig_kwargs: Dict[str, Any] = dict(mass=mass, drive_stiffness=drive_stiffness, sliding_velocity=sliding_velocity,
                                       amplitude=amplitude, frequency=frequency, normal_force=normal_force,
@@ -158,15 +141,14 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
 
     weight_force = probe.mass * probe.gravitational_acceleration if probe.gravity else 0.0
     level = float(np.quantile(np.abs(measured_all - weight_force), 0.95))
-    guess: Dict[str, float] = {"mu": max(level / probe.normal_force, 1e-3), "tangential_stiffness": 1e5,
-                               "exponent": 1.0, "mu_static_excess": 0.1 * max(level / probe.normal_force, 1e-3),
-                               "stribeck_velocity": 1e-3, "bristle_stiffness": 1e5, "bristle_damping": 0.0,
-                               "viscous_damping": 0.0, "shape_exponent": 2.0, "viscous_coefficient": 0.0}
+    mu = max(level / probe.normal_force, 1e-3)  # while the rig slides, F_d balances mu N (plus inertia)
+    guess = lawdef.starting_values()
+    guess.update(mu=mu, mu_static_excess=0.1 * mu)
     guess.update(user_guess)
     spec = _build_spec(lawdef, fitted_names, guess, fixed, all_bounds, {}, {}, user_guess)
-    scan_names = [name for name in fitted_names if name not in user_guess and
-                  (lawdef.param(name).scan or name == "mu")]
-    scan_names.sort(key=lambda name: 0 if name in ("tangential_stiffness", "bristle_stiffness") else 1)
+    # mu is scanned too: the drive-force level is a rough guess of mu N, since F_d also carries m x''
+    scan_names = _stiffness_first([name for name in fitted_names if name not in user_guess and
+                                   (lawdef.param(name).scan or name == "mu")])
 
     measured = measured_all[window]
     w = None if w_all is None else w_all[window]
@@ -178,13 +160,10 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
 
     def model(q: Mapping[str, float]) -> np.ndarray:
         rig = rig_for(q)
-        kwargs = dict(sim_kwargs)
-        if "atol_per_state" not in kwargs:
-            stiffness = lawdef.state_stiffness(lawdef.physical(q))
-            kwargs["atol_per_state"] = _rig_atol(rig.state_names, force_atol, probe.drive_stiffness, stiffness,
-                                                 duration, speed, 2.0 * math.pi * probe.frequency)
-        result = _simulate(rig, t, kwargs,
-                           relative_velocity=lambda r: r["velocity"] - rig.surface_velocity(r.t))
+        kwargs = _with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
+                                  law_stiffness=lawdef.state_stiffness(lawdef.physical(q)),
+                                  drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
+        result = _simulate(rig, t, kwargs)
         if result.t.size != t.size:
             raise IndexError("the run did not record every requested time")
         return np.asarray(rig.drive_force(result.t, result["position"]))[window]
@@ -194,23 +173,3 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     return _result(result_fit, lawdef, method=method, experiment="axial vibration rig", signal_name="drive_force",
                    t=t[window], measured=measured, rig=rig_for(result_fit.q), initial_state=None, started=started)
 
-
-def _rig_atol(names: Sequence[str], force_atol: float, drive_stiffness: float, law_stiffness: float,
-              duration: float, speed: float, omega: float) -> List[float]:
-    """Absolute tolerances per state, scaled so each contributes ~force_atol [N] to the drive/friction force."""
-    position = force_atol / drive_stiffness
-    out = []
-    for name in names:
-        if name == "position":
-            out.append(position)
-        elif name == "velocity":
-            out.append(position * omega)
-        elif name.endswith("deflection"):
-            out.append(force_atol / law_stiffness if law_stiffness > 0 else position)
-        elif name == "friction_impulse":
-            out.append(force_atol * duration)
-        elif name.endswith("work"):
-            out.append(force_atol * duration * speed)
-        else:
-            out.append(force_atol)
-    return out

@@ -1,0 +1,198 @@
+"""The search space: physical parameters <-> O(1) search variables, bounds, fixed values, user input.
+
+Positive parameters are searched in log space, x = ln(q / q_ref): k_t may lie anywhere in 10..1e10 N/m, and
+a relative step is the natural one for it. The others (coefficients that may be zero) are linear,
+x = (q - q_ref) / scale with scale ~ |q_ref|. Either way the search variables are all O(1), which the
+trust-region steps, the finite-difference Jacobian and the singular-value test of identifiability rely on.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .parameters import _canonical, _LawDef, _Param
+from .validation import _reject
+
+Bounds = Mapping[str, Tuple[float, float]]
+
+
+@dataclass
+class _Var:
+    """One searched variable: q = ref exp(x) (log) or q = ref + scale x (linear)."""
+
+    name: str
+    lower: float
+    upper: float
+    ref: float
+    log: bool
+    scale: float = 1.0
+    magnitude_floor: float = 0.0  # relative standard errors are taken against max(|q|, floor)
+
+    def q(self, x: float) -> float:
+        value = self.ref * math.exp(x) if self.log else self.ref + self.scale * x
+        return min(max(value, self.lower), self.upper)  # clip rounding just past a bound
+
+    def x(self, q: float) -> float:
+        return math.log(q / self.ref) if self.log else (q - self.ref) / self.scale
+
+    def dq_dx(self, x: float) -> float:
+        return self.q(x) if self.log else self.scale
+
+    @property
+    def x_bounds(self) -> Tuple[float, float]:
+        if self.log:
+            lo = math.log(self.lower / self.ref)
+            hi = math.log(self.upper / self.ref) if math.isfinite(self.upper) else math.inf
+        else:
+            lo = (self.lower - self.ref) / self.scale if math.isfinite(self.lower) else -math.inf
+            hi = (self.upper - self.ref) / self.scale if math.isfinite(self.upper) else math.inf
+        return lo, hi
+
+    def grid(self, points_per_decade: float = 2.0) -> np.ndarray:
+        """Coarse grid over the bounds for the starting-value scan (none for an open range)."""
+        if not (math.isfinite(self.lower) and math.isfinite(self.upper)):
+            return np.array([])
+        if self.log:
+            n = max(5, int(math.ceil(points_per_decade * math.log10(self.upper / self.lower))) + 1)
+            return np.geomspace(self.lower, self.upper, n)
+        return np.linspace(self.lower, self.upper, 11)
+
+
+@dataclass
+class _Spec:
+    """Fitted variables, fixed values, and the map to reported (physical) parameters."""
+
+    variables: List[_Var]
+    fixed: Dict[str, float]
+    physical: Callable[[Mapping[str, float]], Dict[str, float]]  # all fit variables -> reported parameters
+
+    @property
+    def names(self) -> List[str]:
+        return [v.name for v in self.variables]
+
+    def q(self, x: Sequence[float]) -> Dict[str, float]:
+        out = dict(self.fixed)
+        for v, xi in zip(self.variables, x):
+            out[v.name] = v.q(float(xi))
+        return out
+
+    def x(self, q: Mapping[str, float]) -> np.ndarray:
+        return np.array([v.x(q[v.name]) for v in self.variables])
+
+    def x_bounds(self) -> Tuple[np.ndarray, np.ndarray]:
+        pairs = [v.x_bounds for v in self.variables]
+        return np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
+
+    def with_refs(self, q: Mapping[str, float]) -> "_Spec":
+        """The same spec re-centred at ``q`` (x = 0 there)."""
+        variables = []
+        for v in self.variables:
+            ref = q[v.name]
+            scale = v.scale if v.log else (abs(ref) if ref != 0.0 else v.scale)
+            variables.append(_Var(v.name, v.lower, v.upper, ref, v.log, scale, v.magnitude_floor))
+        return _Spec(variables, dict(self.fixed), self.physical)
+
+
+def _make_var(param: _Param, bounds: Tuple[float, float], ref: float, floor: float = 0.0) -> _Var:
+    """Log space when the lower bound is positive; else linear, scaled by |ref| (or a tenth of the range)."""
+    lower, upper = bounds
+    use_log = lower > 0.0
+    if use_log:
+        scale = 1.0
+    else:
+        scale = abs(ref) if ref != 0.0 else ((upper - lower) / 10.0 if math.isfinite(upper - lower) else 1.0)
+    return _Var(param.name, lower, upper, ref, use_log, scale, floor)
+
+
+# ------------------------------------------------------------------------------------------ the user's input
+def _user_bounds(lawdef: _LawDef, bounds: Optional[Bounds], extra: Mapping[str, _Param],
+                 force_scale: float = 1.0, speed_scale: float = 1.0) -> Dict[str, Tuple]:
+    """Default bounds overridden by ``bounds``; a NaN upper bound (damping) becomes 10 force / speed."""
+    damping_max = 10.0 * force_scale / speed_scale
+    out: Dict[str, Tuple[float, float]] = {
+        p.name: (p.bounds[0], damping_max if math.isnan(p.bounds[1]) else p.bounds[1]) for p in lawdef.params}
+    out.update({name: p.bounds for name, p in extra.items()})
+    for key, pair in (bounds or {}).items():
+        name = _canonical(lawdef, key, "bounds", tuple(extra))
+        where = f"bounds[{key!r}]"
+        if name == "mu_static":
+            _reject(f"{where}: mu_static is fitted as mu_static_excess = mu_static - mu >= 0; bound that instead",
+                    where)
+        try:
+            lo, hi = (float(pair[0]), float(pair[1]))
+        except (TypeError, ValueError, IndexError):
+            _reject(f"{where} must be a (lower, upper) pair of numbers (got {pair!r})", where)
+        if math.isnan(lo) or math.isnan(hi) or not lo < hi:
+            _reject(f"{where} must satisfy lower < upper (got ({lo}, {hi}))", where)
+        param = extra.get(name) or lawdef.param(name)
+        if param.minimum is not None and not math.isinf(-param.minimum):
+            if lo < param.minimum or (param.strict and lo == param.minimum):
+                rule = ">" if param.strict else ">="
+                _reject(f"{where}: the lower bound must be {rule} {param.minimum} for {name} (got {lo})", where)
+        out[name] = (lo, hi)
+    return out
+
+
+def _user_values(lawdef: _LawDef, values: Optional[Mapping[str, float]], where: str,
+                 extra: Sequence[str] = ()) -> Dict[str, float]:
+    """{name or alias: number} -> {fit-variable name: finite float}."""
+    out: Dict[str, float] = {}
+    for key, value in (values or {}).items():
+        name = _canonical(lawdef, key, where, extra)
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            _reject(f"{where}[{key!r}] must be a number (got {value!r})", f"{where}[{key!r}]")
+        if not math.isfinite(value):
+            _reject(f"{where}[{key!r}] must be finite (got {value})", f"{where}[{key!r}]")
+        out[name] = value
+    return out
+
+
+def _resolve_mu_static(values: Dict[str, float], mu: Optional[float], where: str) -> None:
+    """Turn a given mu_static into mu_static_excess (needs mu)."""
+    if "mu_static" not in values:
+        return
+    mu_static = values.pop("mu_static")
+    if mu is None:
+        _reject(f"{where}['mu_static'] needs mu in {where} too (mu_static is fitted as mu_static - mu); "
+                f"or give mu_static_excess", f"{where}['mu_static']")
+    if mu_static < mu:
+        _reject(f"{where}['mu_static'] must be >= mu ({mu}); got {mu_static}", f"{where}['mu_static']")
+    values["mu_static_excess"] = mu_static - mu
+
+
+def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, float], fixed: Mapping[str, float],
+                bounds: Mapping[str, Tuple[float, float]], extra: Mapping[str, _Param],
+                floors: Mapping[str, float], user_guess: Mapping[str, float]) -> _Spec:
+    """The search space centred at ``guess`` (a data-based guess is clipped into the bounds, a user's is not)."""
+    variables = []
+    for name in fitted:
+        param = extra.get(name) or lawdef.param(name)
+        lo, hi = bounds[name]
+        value = guess[name]
+        if not lo <= value <= hi:
+            if name in user_guess:
+                _reject(f"initial_guess[{name!r}] = {value} is outside its bounds [{lo}, {hi}]",
+                        f"initial_guess[{name!r}]")
+            value = min(max(value, lo), hi)
+        if lo > 0.0 and value <= 0.0:
+            value = lo
+        variables.append(_make_var(param, (lo, hi), value, floors.get(name, 0.0)))
+    for name, value in fixed.items():
+        param = extra.get(name) or (lawdef.param(name) if name != "mu_static" else None)
+        if param is not None and (value < param.minimum or (param.strict and value == param.minimum)):
+            _reject(f"fixed[{name!r}] = {value} is not a valid {name}", f"fixed[{name!r}]")
+
+    def physical(q: Mapping[str, float]) -> Dict[str, float]:
+        out = lawdef.physical(q)
+        for name in extra:
+            if name in q:
+                out[name] = q[name]
+        return out
+
+    return _Spec(variables, dict(fixed), physical)

@@ -1,0 +1,220 @@
+"""The fitting core shared by every identification: search the parameters, then quantify their uncertainty.
+
+* local search: :func:`scipy.optimize.least_squares` (trust-region reflective, box bounds), started from a
+  coarse coordinate scan of the parameters that have no initial guess;
+* global search (what paper 000's genetic / particle-swarm methods are for):
+  :func:`scipy.optimize.differential_evolution` over the same bounds, deterministic for a given ``seed``,
+  polished by least_squares;
+* the uncertainty at the solution: :mod:`frictionsim.fit.uncertainty`.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+from scipy import optimize
+
+from .parameters import _law_def, _LawDef
+from .residuals import _Evaluator
+from .search_space import _Spec
+from .uncertainty import _residual_variance, _uncertainty
+from .validation import _reject
+
+#: Search methods accepted by ``method=``.
+METHODS = ("least_squares", "differential_evolution")
+
+# SciPy renamed differential_evolution's ``seed`` to ``rng``
+_DE_SEED_KEYWORD = "rng" if "rng" in inspect.signature(optimize.differential_evolution).parameters else "seed"
+
+
+def _check_method(method: str) -> str:
+    if method not in METHODS:
+        _reject(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
+    return method
+
+
+@dataclass
+class _Options:
+    """Solver knobs shared by every identify_* function (see the docstrings)."""
+
+    seed: Optional[int] = 0
+    polish: bool = True
+    maxiter: int = 100
+    popsize: int = 15
+    tol: float = 0.01
+    workers: int = 1
+    max_nfev: Optional[int] = None
+    diff_step: float = 1e-3
+    ftol: float = 1e-10
+    xtol: float = 1e-10
+    gtol: float = 1e-10
+    loss: str = "linear"
+    max_relative_stderr: float = 0.3
+    rcond: float = 1e-4
+    jacobian_step: float = 1e-2
+    scan: bool = True
+
+
+def _options(kwargs: Dict[str, Any]) -> _Options:
+    """The ``**solver_options`` of an identify_* call, checked (a misspelt one is a TypeError, as for any
+    keyword)."""
+    known = _Options.__dataclass_fields__
+    unknown = [k for k in kwargs if k not in known]
+    if unknown:
+        raise TypeError(f"unexpected keyword argument(s): {', '.join(unknown)}; solver options are "
+                        f"{', '.join(known)}")
+    opts = _Options(**kwargs)
+    for name in ("maxiter", "popsize", "workers"):
+        value = getattr(opts, name)
+        if isinstance(value, bool) or not float(value).is_integer() or value < 1:
+            _reject(f"{name} must be a positive whole number (got {value!r})", name)
+    for name in ("tol", "diff_step", "max_relative_stderr", "rcond", "jacobian_step"):
+        value = getattr(opts, name)
+        if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+            _reject(f"{name} must be positive and finite (got {value!r})", name)
+    return opts
+
+
+def _fit_setup(law: Any, method: str, solver_options: Dict[str, Any]) -> Tuple[_LawDef, str, _Options]:
+    """The law, the search method and its options of an identify_* call, checked in that order."""
+    return _law_def(law), _check_method(method), _options(solver_options)
+
+
+# ------------------------------------------------------------------------------------------------ searches
+def _coordinate_scan(evaluator: _Evaluator, spec: _Spec, names: Sequence[str], rounds: int = 1,
+                     patience: int = 4) -> _Spec:
+    """Coarse grid over each named variable's bounds in turn (others held), to start least_squares nearby.
+
+    Each grid is walked upwards and left once ``patience`` points past the sweep's best cost 25 % more than it
+    (the far end of a stiffness grid is the expensive, stiff end)."""
+    if not names:
+        return spec
+    q = spec.q(np.zeros(len(spec.variables)))
+    best = evaluator.cost(spec.x(q))
+    for _ in range(rounds):
+        for name in names:
+            var = spec.variables[spec.names.index(name)]
+            sweep_best, worse = math.inf, 0
+            for value in var.grid():
+                trial = dict(q)
+                trial[name] = float(value)
+                c = evaluator.cost(spec.x(trial))
+                if c < best:
+                    best, q = c, trial
+                if c < sweep_best:
+                    sweep_best, worse = c, 0
+                elif c > 1.25 * sweep_best:
+                    worse += 1
+                    if worse >= patience:
+                        break
+    return spec.with_refs(q)
+
+
+def _least_squares(evaluator: _Evaluator, spec: _Spec, x0: np.ndarray, opts: _Options):
+    lower, upper = spec.x_bounds()
+    x0 = np.clip(x0, lower, upper)
+    return optimize.least_squares(
+        evaluator.residual, x0, jac=lambda x: evaluator.jacobian(x, opts.diff_step), bounds=(lower, upper),
+        method="trf", x_scale=1.0,
+        loss=opts.loss, ftol=opts.ftol, xtol=opts.xtol, gtol=opts.gtol, max_nfev=opts.max_nfev)
+
+
+def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.ndarray], opts: _Options):
+    lower, upper = spec.x_bounds()
+    if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))):
+        bad = spec.names[int(np.flatnonzero(~(np.isfinite(lower) & np.isfinite(upper)))[0])]
+        _reject(f"differential_evolution needs finite bounds; bounds[{bad!r}] is not", f"bounds[{bad!r}]")
+    kwargs: Dict[str, Any] = dict(maxiter=int(opts.maxiter), popsize=int(opts.popsize), tol=float(opts.tol),
+                                  polish=False, init="latinhypercube")
+    kwargs[_DE_SEED_KEYWORD] = opts.seed
+    if x0 is not None:
+        kwargs["x0"] = np.clip(x0, lower, upper)
+    pool = None
+    if opts.workers > 1:  # the engine releases the GIL: threads run simulations in parallel
+        pool = ThreadPoolExecutor(max_workers=int(opts.workers))
+        kwargs.update(workers=pool.map, updating="deferred")
+    try:
+        return optimize.differential_evolution(evaluator.cost, list(zip(lower, upper)), **kwargs)
+    finally:
+        if pool is not None:
+            pool.shutdown()
+
+
+# ------------------------------------------------------------------------------------------------ the core
+@dataclass
+class _Fit:
+    """What the core returns: the solution and its uncertainty, in fit variables and reported parameters."""
+
+    spec: _Spec
+    x: np.ndarray
+    q: Dict[str, float]
+    params: Dict[str, float]
+    fitted: Tuple[str, ...]  # reported parameters that depend on the fit variables
+    stderr: Dict[str, float]
+    covariance: np.ndarray
+    correlation: np.ndarray
+    identifiable: Dict[str, bool]
+    reasons: Dict[str, str]
+    singular_values: np.ndarray
+    condition_number: float
+    signal: np.ndarray
+    residual: np.ndarray  # model - measured, unweighted
+    success: bool
+    message: str
+    n_evaluations: int
+    n_failed: int
+
+
+def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, weights: Optional[np.ndarray],
+         spec: _Spec, *, method: str, opts: _Options, scan_names: Sequence[str] = (),
+         x0_given: bool = False) -> _Fit:
+    """Fit ``model`` to ``measured``: the core of the kinematic and the rig-level identification.
+
+    ``model(q)`` returns the simulated signal at the measured samples for fit variables ``q`` (raising
+    SimulationError on a failed run); ``spec`` gives the searched variables, bounds, fixed values and the map to
+    reported parameters.
+    """
+    evaluator = _Evaluator(model, measured, weights, spec)
+    messages = []
+    success = True
+    if method == "least_squares":
+        if opts.scan and scan_names:
+            spec = _coordinate_scan(evaluator, spec, scan_names, rounds=2 if len(scan_names) > 1 else 1)
+            evaluator.spec = spec
+        ls = _least_squares(evaluator, spec, np.zeros(len(spec.variables)), opts)
+        x = ls.x
+        success = bool(ls.success)
+        messages.append(f"least_squares: {ls.message.rstrip('.')}")
+    else:
+        de = _differential_evolution(evaluator, spec, np.zeros(len(spec.variables)) if x0_given else None, opts)
+        x = np.asarray(de.x, dtype=float)
+        messages.append(f"differential_evolution ({de.nit} generations): {str(de.message).rstrip('.')}")
+        success = bool(de.success)
+        if opts.polish:
+            ls = _least_squares(evaluator, spec, x, opts)
+            if evaluator.cost(ls.x) <= evaluator.cost(x):
+                x = ls.x
+            success = success or bool(ls.success)
+            messages.append(f"least_squares polish: {ls.message.rstrip('.')}")
+
+    q = spec.q(x)
+    signal = evaluator.signal(q)
+    ran = signal is not None
+    if not ran:
+        success = False
+        messages.append(f"the simulation at the solution failed ({evaluator.last_error})")
+        signal = np.full_like(measured, np.nan)
+    residual = signal - measured
+    n, m = len(spec.variables), int(np.count_nonzero(weights)) if weights is not None else measured.size
+    s2 = _residual_variance(residual if weights is None else residual * weights, m, n)
+
+    jac = evaluator.jacobian(x, opts.jacobian_step, central=True) if ran and n else np.zeros((m, n))
+    uncertainty = _uncertainty(spec, x, jac, s2, rcond=opts.rcond, max_relative_stderr=opts.max_relative_stderr)
+    return _Fit(spec=spec, x=x, q=q, signal=signal, residual=residual, success=success,
+                message="; ".join(messages), n_evaluations=evaluator.n_evaluations, n_failed=evaluator.n_failed,
+                **uncertainty)

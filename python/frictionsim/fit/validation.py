@@ -1,0 +1,92 @@
+"""Checks of the measured record (time base, signals, normal force, weights) before any simulation runs.
+
+Every rejection is an :class:`~frictionsim.errors.InvalidParameterError` naming the offending argument, so a
+bad record fails at once with the sample at fault instead of deep inside a fit.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, NoReturn, Optional, Tuple, Union
+
+import numpy as np
+
+from ..errors import InvalidParameterError
+
+#: What a kinematic rig takes as N: a constant [N] or a (t_N, N) sample pair.
+NormalForce = Union[float, Tuple[np.ndarray, np.ndarray]]
+
+
+def _reject(message: str, parameter: str) -> NoReturn:
+    raise InvalidParameterError(message, parameter)
+
+
+def _vector(name: str, value: Any, n: Optional[int] = None) -> np.ndarray:
+    """A finite 1-D float array (of ``n`` samples when given)."""
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        _reject(f"{name} must be a 1-D array of numbers", name)
+    if array.ndim != 1:
+        _reject(f"{name} must be a 1-D array (got shape {array.shape})", name)
+    if n is not None and array.size != n:
+        _reject(f"{name} must have as many samples as t ({n}); got {array.size}", name)
+    if not np.all(np.isfinite(array)):
+        bad = int(np.flatnonzero(~np.isfinite(array))[0])
+        _reject(f"{name} must be finite (sample {bad} is {array[bad]})", name)
+    return array
+
+
+def _time(t: Any) -> np.ndarray:
+    """Sample times: at least 3 (a fit needs more samples than the smallest model), strictly increasing."""
+    t = _vector("t", t)
+    if t.size < 3:
+        _reject(f"t must hold at least 3 samples (got {t.size})", "t")
+    steps = np.diff(t)
+    if not np.all(steps > 0.0):
+        bad = int(np.flatnonzero(~(steps > 0.0))[0]) + 1
+        _reject(f"t must be strictly increasing (t[{bad}] = {t[bad]} after {t[bad - 1]})", "t")
+    return t
+
+
+def _record(t: Any, signal: Any, name: str) -> Tuple[np.ndarray, np.ndarray]:
+    """-> (t, signal): the time base, then a signal sampled on it."""
+    t = _time(t)
+    return t, _vector(name, signal, t.size)
+
+
+def _normal_force(normal_force: Any, t: np.ndarray) -> Tuple[NormalForce, float]:
+    """-> (what KinematicRig takes, N at t[0]); accepts a number, an array like t, or a (t_N, N) pair."""
+    if normal_force is None:
+        _reject("normal_force is required: a positive number [N] or an array of N(t) samples", "normal_force")
+    if np.ndim(normal_force) == 0 and not isinstance(normal_force, (tuple, list)):
+        try:
+            value = float(normal_force)
+        except (TypeError, ValueError):
+            _reject(f"normal_force must be a number or an array (got {type(normal_force).__name__})", "normal_force")
+        if not (math.isfinite(value) and value > 0.0):
+            _reject(f"normal_force must be positive and finite (got {value})", "normal_force")
+        return value, value
+    if isinstance(normal_force, tuple) and len(normal_force) == 2:
+        t_n = _time(normal_force[0])
+        n = _vector("normal_force", normal_force[1], t_n.size)
+        if t_n[0] > t[0] or t_n[-1] < t[-1]:
+            _reject(f"normal_force samples must cover t = [{t[0]}, {t[-1]}] s (they cover [{t_n[0]}, {t_n[-1]}])",
+                    "normal_force")
+    else:
+        t_n, n = t, _vector("normal_force", normal_force, t.size)
+    if not np.all(n > 0.0):
+        bad = int(np.flatnonzero(~(n > 0.0))[0])
+        _reject(f"normal_force must be positive at every sample (sample {bad} is {n[bad]})", "normal_force")
+    return (t_n, n), float(np.interp(t[0], t_n, n))
+
+
+def _weights(weights: Any, n: int) -> Optional[np.ndarray]:
+    """Residual weights 1/sigma_i: non-negative (0 drops a sample), not all zero."""
+    if weights is None:
+        return None
+    w = _vector("weights", weights, n)
+    if not np.all(w >= 0.0) or not np.any(w > 0.0):
+        _reject("weights must be non-negative with at least one positive (they multiply the residuals, "
+                "1/sigma_i)", "weights")
+    return w
