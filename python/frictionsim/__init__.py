@@ -24,7 +24,7 @@ from ._core import (
 from .errors import ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
 from .simulation import METHODS, simulate
-from .sweep import SweepResult, sweep
+from .sweeps import SweepResult, sweep
 
 __version__ = "0.1.0"
 

@@ -4,7 +4,7 @@ The same call scales from a laptop to a cluster, because the work is handed to a
 :class:`concurrent.futures.Executor`::
 
     >>> import frictionsim as fs
-    >>> from frictionsim.sweep import axial_mean_friction
+    >>> from frictionsim.sweeps import axial_mean_friction
     >>> grid = {"amplitude": [1e-3, 3e-3, 5e-3], "frequency": [10.0, 17.0, 25.0]}   # m, Hz
     >>> result = fs.sweep(axial_mean_friction, grid, fixed={"friction": fs.Dahl(0.41, 4e4)})
     >>> result.as_array()           # F_df [N] on the 3 x 3 (amplitude, frequency) grid
