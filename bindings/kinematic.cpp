@@ -48,7 +48,10 @@ Signal Signal::callable(py::object function, const char* name) {
 
 Signal Signal::from_python(py::handle value, const char* name) {
     if (PyCallable_Check(value.ptr())) return callable(py::reinterpret_borrow<py::object>(value), name);
-    if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) return constant(value.cast<double>(), name);
+    // Any real number, NumPy scalars included (np.float32, np.int64 have __float__ / __index__).
+    if (!py::isinstance<py::str>(value) && !py::isinstance<py::sequence>(value) && !py::isinstance<py::array>(value) &&
+        (PyFloat_Check(value.ptr()) || PyLong_Check(value.ptr()) || PyObject_HasAttrString(value.ptr(), "__float__")))
+        return constant(py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>(), name);
     if ((py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) && py::len(value) == 2) {
         using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
         const auto t = Array::ensure(value[py::int_(0)]);

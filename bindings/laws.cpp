@@ -16,7 +16,12 @@ namespace {
 
 constexpr double unset = std::numeric_limits<double>::quiet_NaN();
 
-double or_unset(const std::optional<double>& v) { return v ? *v : unset; }
+/// None -> unset (NaN, "equal to mu"); a NaN the caller passed is bad input, not "unset".
+double or_unset(const std::optional<double>& v, const char* name) {
+    if (!v) return unset;
+    if (std::isnan(*v)) throw InvalidParameter(name, std::string("Coulomb: ") + name + " must be finite or None (got nan)");
+    return *v;
+}
 
 template <class Make>
 auto constructing(Make&& make) -> decltype(make()) {
@@ -87,7 +92,7 @@ mu_static : float, optional
     Static (breakaway) coefficient mu_s [-], >= mu. Default: equal to mu.
 )doc")
         .def(py::init([](double mu, std::optional<double> mu_static) {
-                 return constructing([&] { return Coulomb(mu, or_unset(mu_static)); });
+                 return constructing([&] { return Coulomb(mu, or_unset(mu_static, "mu_static")); });
              }),
              py::arg("mu"), py::arg("mu_static") = py::none())
         .def_property_readonly("mu", &Coulomb::friction_coefficient, "Kinetic coefficient mu [-].")

@@ -378,6 +378,7 @@ TEST_CASE("SolverOptions: every non-physical field throws InvalidParameter namin
         check_rules({
             {"rtol", not_positive, with(ok, &O::rtol, run)},
             {"rtol", {1e-15, 1e-300}, with(ok, &O::rtol, run)},  // below double precision
+            {"rtol", {1.0, 5.0}, with(ok, &O::rtol, run)},  // 100% relative error or more
             {"atol", not_positive, with(ok, &O::atol, run)},
             {"atol_per_state", not_positive, vector_option(&O::atol_per_state, {1e-10, kNaN})},
             {"max_step", {-1.0, -0.0, 0.0, kNaN, -kInf}, with(ok, &O::max_step, run)},

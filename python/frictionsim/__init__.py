@@ -1,8 +1,8 @@
 """frictionsim: friction-driven dynamics in drilling.
 
 A C++17 engine (stick-slip located as events, exact restarts, Dormand-Prince 5(4) and SUNDIALS CVODE) with the
-friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel) and paper 001 (torsional
-drill-string rig); Python adds fitting, signal processing, plots, sweeps and a command line. SI units throughout.
+friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel); Python adds fitting, signal
+processing, plots, sweeps and a command line. SI units throughout.
 
     >>> import frictionsim as fs
     >>> rig = fs.AxialVibrationRig(friction=fs.Dahl(mu=0.41, tangential_stiffness=4e4))

@@ -34,6 +34,7 @@ class SimulationError(RuntimeError):
         super().__init__(message)
         self.time_reached = float(time_reached)
         self._partial = partial
+        self._period = None  # the rig's period, set by simulate()
 
     @property
     def partial(self) -> Optional["Result"]:  # noqa: F821 - forward reference
@@ -42,7 +43,7 @@ class SimulationError(RuntimeError):
 
         if self._partial is None or isinstance(self._partial, Result):
             return self._partial
-        self._partial = Result(self._partial)
+        self._partial = Result(self._partial, period=self._period)
         return self._partial
 
     def __reduce__(self):

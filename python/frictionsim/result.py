@@ -125,6 +125,9 @@ class Result:
             period = self.period
         if period is None:
             raise ValueError("period: this rig has no vibration period; pass period= (s)")
+        if cycles is not None and (isinstance(cycles, bool) or not isinstance(cycles, (int, np.integer))
+                                   or cycles < 1):
+            raise ValueError(f"cycles must be None or an integer >= 1 (got {cycles!r})")
         t_a, t_b, _ = _core.whole_cycle_window(float(self.t[0]), float(self.t[-1]), float(period),
                                                float(transient), int(cycles or 0))
         return _core.mean_from_integral(self.t, self["friction_impulse"], t_a, t_b)

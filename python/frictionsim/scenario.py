@@ -98,6 +98,9 @@ _AXIAL_KEYS = {"mass": float, "drive_stiffness": float, "sliding_velocity": floa
 _KINEMATIC_KEYS = {"normal_force": float, "sliding_velocity": float, "velocity_amplitude": float,
                    "frequency": float, "velocity_file": str}
 _HARMONIC = ("sliding_velocity", "velocity_amplitude", "frequency")
+#: Output rows a scenario may ask for: 1e7 rows of a few states are ~0.5 GB of CSV already.
+MAX_OUTPUT_POINTS = 10_000_000
+
 _SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "output_points": int,
                 "output_step": float}
 _ANALYSIS_KEYS = {"transient": float, "cycles": int, "period": float}
@@ -273,6 +276,8 @@ def load(path: Union[str, Path]) -> Scenario:
         text = path.read_text(encoding="utf-8")
     except OSError as error:
         raise ScenarioError(path, None, f"cannot read the scenario file ({error.strerror or error})") from None
+    except UnicodeDecodeError as error:
+        raise ScenarioError(path, None, f"must be UTF-8 text (TOML); byte {error.start} is not") from None
     return loads(text, source=path)
 
 
@@ -485,6 +490,8 @@ class _Parser:
             lines = file.read_text(encoding="utf-8").splitlines()
         except OSError as error:
             raise self.error(path, f"cannot read {str(file)!r} ({error.strerror or error})") from None
+        except UnicodeDecodeError as error:
+            raise self.error(path, f"{str(file)!r} must be UTF-8 text; byte {error.start} is not") from None
         rows = [line.split("#", 1)[0].strip() for line in lines]
         rows = [row for row in rows if row]
         try:
@@ -523,12 +530,18 @@ class _Parser:
             raise self.error(paths["method"], f"must be one of {', '.join(METHODS)} (got {values['method']!r})")
         if "output_points" in values and "output_step" in values:
             raise self.error(paths["output_step"], "give output_points or output_step, not both")
-        if "output_points" in values and values["output_points"] < 2:
-            raise self.error(paths["output_points"], f"must be at least 2 (got {values['output_points']})")
+        if "rtol" in values and values["rtol"] >= 1.0:
+            raise self.error(paths["rtol"], f"must be < 1 (got {values['rtol']:g})")
+        if "output_points" in values and not 2 <= values["output_points"] <= MAX_OUTPUT_POINTS:
+            raise self.error(paths["output_points"],
+                             f"must be in [2, {MAX_OUTPUT_POINTS:.0e}] (got {values['output_points']})")
         if "output_step" in values:
             values["output_points"] = None
             if values["output_step"] > values["t_end"]:
                 raise self.error(paths["output_step"], f"must be <= t_end (got {values['output_step']:g})")
+            if values["t_end"] / values["output_step"] > MAX_OUTPUT_POINTS:
+                raise self.error(paths["output_step"], f"must give at most {MAX_OUTPUT_POINTS:.0e} output points "
+                                 f"(t_end / output_step = {values['t_end'] / values['output_step']:.3g})")
         return SolverSpec(**values), paths
 
     def analysis(self, merged, path: str) -> Tuple[AnalysisSpec, Dict[str, str]]:

@@ -8,6 +8,7 @@ from typing import Optional, Sequence, Union
 import numpy as np
 
 from . import _core
+from .errors import SimulationError
 from .result import Result
 
 __all__ = ["simulate", "METHODS"]
@@ -74,7 +75,11 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
     options.initial_step = float(initial_step)
     options.max_events_in_window = _integer("max_events_in_window", max_events_in_window)
     options.event_window = float(event_window)
-    raw = rig._simulate(float(t_end), options, float(t_start))
+    try:
+        raw = rig._simulate(float(t_end), options, float(t_start))
+    except SimulationError as error:
+        error._period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
+        raise
     return Result(raw, period=rig.period)
 
 

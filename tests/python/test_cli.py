@@ -189,6 +189,13 @@ BAD = [
                               'solver = {t_end = 1.0}\nanalysis = {period = 0.1}\n', "rig.velocity_file",
      "cannot read"),
     ("no friction", 'rig = {type = "axial"}\nsolver = {t_end = 1.0}\n', "friction", "missing required table"),
+    ("rtol of 100%", DRY.replace("rtol = 1e-8", "rtol = 5.0"), "solver.rtol", "must be < 1"),
+    ("too many output points", DRY.replace("output_points = 4001", "output_points = 10000000000"),
+     "solver.output_points", "must be in [2, "),
+    ("latin-1 velocity file", 'rig = {type = "kinematic", normal_force = 90.0, velocity_file = "v.csv"}\n'
+                              'friction = {type = "dahl", mu = 0.4, tangential_stiffness = 4e4}\n'
+                              'solver = {t_end = 1.0}\nanalysis = {period = 0.1}\n', "rig.velocity_file",
+     "must be UTF-8 text"),
 ]
 
 
@@ -199,6 +206,8 @@ def test_bad_scenario_names_file_and_key_and_writes_nothing(label, text, key, ru
     work.mkdir()
     bad = work / "bad.toml"
     bad.write_text(text)
+    if label == "latin-1 velocity file":  # an instrument's header in Latin-1: t [\xb5s]
+        (work / "v.csv").write_bytes("t [\xb5s], v [m/s]\n0, 1\n1, 1\n".encode("latin-1"))
     monkeypatch.chdir(work)  # the file's own output.directory (out/fig7_dry) must not appear either
     assert main(["run", str(bad)]) == 2
     assert main(["run", str(bad), "--out", str(tmp_path / "out")]) == 2
@@ -206,7 +215,7 @@ def test_bad_scenario_names_file_and_key_and_writes_nothing(label, text, key, ru
     assert err.startswith(f"error: {bad}: {key}: "), err
     assert rule in err
     assert "Traceback" not in err and err.count("\n") == 2
-    assert _files(tmp_path) == ["work", "work/bad.toml"]
+    assert [f for f in _files(tmp_path) if f != "work/v.csv"] == ["work", "work/bad.toml"]
     with pytest.raises(scenario.ScenarioError) as info:
         scenario.load(bad)
     assert info.value.key == key and info.value.file == str(bad)

@@ -309,9 +309,10 @@ def test_bad_kinematic_input_names_the_parameter(change, parameter):
     (dict(fit=("mu", "stiffness")), "fit['stiffness']"),
     (dict(transient=-1.0), "transient"),
     (dict(bounds={"mu": (1.0, 1.0)}), "bounds['mu']"),
+    (dict(t=np.linspace(5.0, 5.1, 50)), "t"),  # a logger's clock: the drive end moves with absolute t
 ])
 def test_bad_rig_input_names_the_parameter(change, parameter):
-    t = np.linspace(0.0, 0.1, 50)
+    t = change.pop("t", np.linspace(0.0, 0.1, 50))
     args = dict(drive_force=np.zeros(50))
     args.update(change)
     drive = args.pop("drive_force")

@@ -33,6 +33,7 @@ def test_laws_keep_their_parameters_and_pickle():
 @pytest.mark.parametrize("make, parameter", [
     (lambda: fs.Coulomb(-0.1), "mu"),
     (lambda: fs.Coulomb(0.4, mu_static=0.3), "mu_static"),
+    (lambda: fs.Coulomb(0.4, mu_static=float("nan")), "mu_static"),  # NaN is not "unset"
     (lambda: fs.Stribeck(0.3, 0.4, 0.0), "stribeck_velocity"),
     (lambda: fs.Stribeck(0.3, 0.4, 1e-3, karnopp_band=-1.0), "karnopp_band"),
     (lambda: fs.Dahl(MU, float("nan")), "tangential_stiffness"),
@@ -187,7 +188,7 @@ def test_bad_rig_parameters_name_the_parameter(parameter, kwargs):
 @pytest.mark.parametrize("parameter, kwargs", [
     ("rtol", dict(rtol=0.0)), ("atol", dict(atol=-1.0)), ("output_times", dict(output_times=[0.2, 0.1])),
     ("output_times", dict(output_times=[0.0, 2.0])), ("max_steps", dict(max_steps=0)),
-    ("atol_per_state", dict(atol_per_state=[1e-9])), ("method", dict(method="euler")),
+    ("atol_per_state", dict(atol_per_state=[1e-9])), ("method", dict(method="euler")), ("rtol", dict(rtol=1.0)),
     ("max_steps", dict(max_steps=1.5)),
 ])
 def test_bad_solver_options_name_the_option(parameter, kwargs):
@@ -211,6 +212,16 @@ def test_bad_kinematic_inputs():
         fs.simulate(sampled, 1.5)
 
 
+def test_numpy_scalars_and_cycle_counts():
+    rig = fs.KinematicRig(fs.Coulomb(MU), relative_velocity=np.float32(0.5), normal_force=np.int64(90))
+    assert rig.normal_force == 90.0
+    result = fs.simulate(rig, 1.0)
+    assert result.mean_over_cycles(period=0.1, cycles=np.int64(3)) == pytest.approx(MU * N, rel=1e-12)
+    for cycles in (0, -1, 2.5, True):
+        with pytest.raises(ValueError, match="cycles"):
+            result.mean_over_cycles(period=0.1, cycles=cycles)
+
+
 def test_failed_run_reports_time_reached_and_keeps_the_partial_result():
     def velocity(t):
         if t > 0.3:
@@ -223,6 +234,7 @@ def test_failed_run_reports_time_reached_and_keeps_the_partial_result():
     error = info.value
     assert 0.25 < error.time_reached <= 0.3
     partial = error.partial
+    assert partial.period is None  # a callable v_r has no period; an axial rig's partial keeps its 1/f
     assert not partial.completed and partial.t[-1] == pytest.approx(error.time_reached)
     assert partial.t_reached == error.time_reached and len(partial) > 10
     # the partial trajectory is the trajectory: it matches an unbroken run up to the failure
@@ -257,3 +269,12 @@ def test_hydraulic_oscillator_normal_force_is_eqs_1_to_4():
         fs.contact.HydraulicOscillatorTool(**{**tool, "tool_outer_radius": 0.2})
     with pytest.raises(ValueError, match="rock_poisson_ratio"):
         fs.contact.HydraulicOscillatorTool(**{**tool, "rock_poisson_ratio": 0.5})
+
+
+def test_partial_result_of_an_axial_rig_keeps_its_period():
+    rig = fs.AxialVibrationRig(friction=fs.Dahl(MU, K_T))
+    with pytest.raises(fs.SimulationError, match="max_steps") as info:
+        fs.simulate(rig, 2.0, max_steps=3000)
+    partial = info.value.partial
+    assert partial.period == rig.period and 0.0 < partial.t_reached < 2.0
+    assert partial.mean_over_cycles(cycles=1) > 0.0  # usable as is: no period to pass

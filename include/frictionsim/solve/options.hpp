@@ -61,6 +61,7 @@ struct SolverOptions {
         constexpr const char* who = "SolverOptions";
         detail::require_positive(who, "rtol", rtol);
         if (rtol < 1e-14) detail::reject(who, "rtol", ">= 1e-14 (below double precision)", rtol);
+        if (rtol >= 1.0) detail::reject(who, "rtol", "< 1 (a relative error of 100% controls nothing)", rtol);
         if (atol_per_state.empty()) {
             detail::require_positive(who, "atol", atol);
         } else {

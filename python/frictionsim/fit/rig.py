@@ -46,8 +46,9 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     Parameters
     ----------
     t : array, s
-        Sample times, strictly increasing; the rig starts at t[0] with ``initial_position`` and
-        ``initial_velocity`` (record from the start of the run, transient included).
+        Sample times, strictly increasing, from t[0] = 0: the rig starts there with ``initial_position`` and
+        ``initial_velocity`` and the drive spring's end at v_d t (record from the start of the run, transient
+        included; subtract a logger's start time).
     drive_force : array, N
         Measured drive force at ``t``.
     law : "dahl" | "lugre" | "stribeck"
@@ -93,6 +94,9 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     started = time.perf_counter()
     lawdef, method, opts = _fit_setup(law, method, solver_options)
     t, measured_all = _record(t, drive_force, "drive_force")
+    if t[0] != 0.0:  # F_d = k_d (v_d t - x) depends on absolute t: a shifted clock is a different experiment
+        _reject(f"t must start at 0, when the rig starts from rest and the drive end at v_d t = 0 (got "
+                f"t[0] = {t[0]!r} s; subtract the logger's start time)", "t")
     w_all = _weights(weights, t.size)
     rig_kwargs: Dict[str, Any] = dict(mass=mass, drive_stiffness=drive_stiffness, sliding_velocity=sliding_velocity,
                                       amplitude=amplitude, frequency=frequency, normal_force=normal_force,

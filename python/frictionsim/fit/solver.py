@@ -199,7 +199,8 @@ def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, 
             ls = _least_squares(evaluator, spec, x, opts)
             if evaluator.cost(ls.x) <= evaluator.cost(x):
                 x = ls.x
-            success = success or bool(ls.success)
+            # the polish refines DE's answer; it cannot make up for a search that did not converge
+            success = success and bool(ls.success)
             messages.append(f"least_squares polish: {ls.message.rstrip('.')}")
 
     q = spec.q(x)
