@@ -191,9 +191,14 @@ def _commit(stage: Path, target: Path) -> None:
             return
         except OSError:
             pass  # created meanwhile: merge below
-    for source in sorted(stage.rglob("*")):
-        if source.is_dir():
-            continue
+    files = [source for source in sorted(stage.rglob("*")) if not source.is_dir()]
+    # Check every destination before replacing any, so that a blocked one leaves the target as it was.
+    for source in files:
+        destination = target / source.relative_to(stage)
+        if destination.is_dir() or any(p.exists() and not p.is_dir() for p in destination.parents
+                                       if target in p.parents or p == target):
+            raise OSError(f"cannot write {destination}: a directory or file is in the way")
+    for source in files:
         destination = target / source.relative_to(stage)
         destination.parent.mkdir(parents=True, exist_ok=True)
         os.replace(source, destination)

@@ -503,6 +503,9 @@ class _Parser:
         if table.ndim != 2 or table.shape[0] < 2 or table.shape[1] != 2:
             raise self.error(path, f"{str(file)!r} must hold two numeric CSV columns t [s], v_r [m/s] with at "
                                    f"least two rows")
+        if table[0, 0] > 0.0:  # runs start at t = 0
+            raise self.error(path, f"{str(file)!r} must start at t <= 0 s, where the run starts "
+                                   f"(its first time is {table[0, 0]:g} s)")
         return table[:, 0].copy(), table[:, 1].copy()
 
     def type_of(self, merged, path: str, allowed) -> Tuple[str, str]:

@@ -327,3 +327,37 @@ def test_console_script_subprocess(tmp_path):
                           text=True, timeout=60, cwd=tmp_path)
     assert done.returncode == 2 and done.stderr.startswith("error: missing.toml: ")
     assert os.listdir(tmp_path) == []
+
+
+def test_blocked_output_replaces_nothing(tmp_path, capsys):
+    # an existing output directory where one file cannot be written: no file of the run is moved in
+    out = tmp_path / "out"
+    (out / "summary.csv").mkdir(parents=True)
+    (out / "coulomb.csv").write_text("old")
+    assert main(["run", str(EXAMPLES / "fig7_dry_coulomb_vs_dahl.toml"), "--out", str(out)]) == 1
+    assert "cannot write" in capsys.readouterr().err
+    assert (out / "coulomb.csv").read_text() == "old" and sorted(p.name for p in out.iterdir()) == [
+        "coulomb.csv", "summary.csv"]
+    assert _files(tmp_path) == ["out", "out/coulomb.csv", "out/summary.csv"]  # staging removed
+
+
+def test_velocity_file_must_start_at_the_run_start(tmp_path):
+    (tmp_path / "v.csv").write_text("t, v\n1.0, 0.1\n2.0, 0.1\n")
+    bad = tmp_path / "late.toml"
+    bad.write_text('rig = {type = "kinematic", normal_force = 90.0, velocity_file = "v.csv"}\n'
+                   'friction = {type = "coulomb", mu = 0.4}\nsolver = {t_end = 1.5}\nanalysis = {period = 0.1}\n')
+    with pytest.raises(scenario.ScenarioError) as info:
+        scenario.load(bad)
+    assert info.value.key == "rig.velocity_file" and "must start at t <= 0" in str(info.value)
+
+
+def test_fit_power_law_rejects_unusable_tables():
+    from frictionsim.fit import fit_power_law
+    import pandas as pd
+
+    with pytest.raises(ValueError, match="DataFrame"):
+        fit_power_law({"velocity_ratio": [1.0]})
+    with pytest.raises(ValueError, match="mu_df"):
+        fit_power_law(pd.DataFrame({"velocity_ratio": [1.0, 2.0]}))
+    with pytest.raises(ValueError, match="lubricant"):
+        fit_power_law(lubricant=3)

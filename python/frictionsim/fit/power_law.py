@@ -137,6 +137,14 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
         from frictionsim.data import table4  # late import: keeps this module usable on any table alone
 
         table = table4()
+    if not isinstance(table, pd.DataFrame):
+        raise ValueError(f"fit_power_law: table must be a pandas DataFrame (got {type(table).__name__})")
+    missing = [c for c in ("velocity_ratio", "mu_df") if c not in table.columns]
+    if missing:
+        raise ValueError(f"fit_power_law: table must have the columns velocity_ratio and mu_df (missing "
+                         f"{', '.join(missing)})")
+    if lubricant is not None and not isinstance(lubricant, str):
+        raise ValueError(f"fit_power_law: lubricant must be a name such as 'dry' (got {lubricant!r})")
     if "lubricant" not in table.columns:
         if lubricant is not None:
             raise ValueError("fit_power_law: lubricant given but the table has no 'lubricant' column")
