@@ -1,4 +1,4 @@
-# Type stubs of the compiled engine (bindings/*.cpp): generated with pybind11-stubgen from the built module,
+# Type information for the compiled engine (bindings/*.cpp), generated with pybind11-stubgen from the built module;
 # numeric parameter types simplified to float / int. Regenerate when the bindings change.
 """
 frictionsim C++ engine: friction laws, rigs and the hybrid (stick-slip) integrator.
