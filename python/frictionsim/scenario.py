@@ -601,6 +601,10 @@ class _Parser:
             window = tuple(self.value(x, float, f"output.plot_window[{i + 1}]") for i, x in enumerate(window))
             if not (math.isfinite(window[0]) and math.isfinite(window[1]) and 0 <= window[0] < window[1]):
                 raise self.error("output.plot_window", f"must satisfy 0 <= t_start < t_end (got {list(window)})")
+            shortest = min(case.solver.t_end for case in cases)
+            if window[0] >= shortest:
+                raise self.error("output.plot_window", f"must start before the shortest run ends "
+                                                       f"(t_end = {shortest:g} s; got t_start = {window[0]:g})")
             values["plot_window"] = window
         return OutputSpec(**values)
 

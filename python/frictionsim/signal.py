@@ -199,6 +199,10 @@ def emd(t, x, *, max_imfs: Optional[int] = None, sd_threshold: float = 0.3, spli
 
     options = {"std_thr": sd_threshold ** 2, **pyemd_options}
     decomposer = EMD(spline_kind=spline, **options)
+    # PyEMD takes any keyword and ignores the ones it does not know: a misspelt option must not pass silently.
+    unknown = sorted(k for k in pyemd_options if not hasattr(decomposer, k))
+    if unknown:
+        _reject(owner, unknown[0], "an option of PyEMD.EMD", pyemd_options[unknown[0]])
     # Sampling is uniform, so PyEMD's index-based extrema detection equals a time-based one.
     decomposer.emd(x, t, max_imf=-1 if max_imfs is None else int(max_imfs))
     imfs, _ = decomposer.get_imfs_and_residue()

@@ -190,6 +190,8 @@ BAD = [
      "cannot read"),
     ("no friction", 'rig = {type = "axial"}\nsolver = {t_end = 1.0}\n', "friction", "missing required table"),
     ("rtol of 100%", DRY.replace("rtol = 1e-8", "rtol = 5.0"), "solver.rtol", "must be < 1"),
+    ("plot window after the run", DRY.replace('directory = "out/fig7_dry"', "plot_window = [10.0, 20.0]"),
+     "output.plot_window", "must start before the shortest run ends"),
     ("too many output points", DRY.replace("output_points = 4001", "output_points = 10000000000"),
      "solver.output_points", "must be in [2, "),
     ("latin-1 velocity file", 'rig = {type = "kinematic", normal_force = 90.0, velocity_file = "v.csv"}\n'

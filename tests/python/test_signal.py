@@ -160,6 +160,7 @@ def _message(excinfo):
         (lambda t, x: signal.cycle_averages(t, x, 0.1, transient=0.95), "period"),
         (lambda t, x: signal.emd(t ** 2, x), "t"),  # non-uniform sampling
         (lambda t, x: signal.emd(t, x, max_imfs=0), "max_imfs"),
+        (lambda t, x: signal.emd(t, x, std_threshold=0.1), "std_threshold"),  # misspelt PyEMD option
         (lambda t, x: signal.emd(t[:3], x[:3]), "t"),
         (lambda t, x: signal.spectrum(t, x, method="fft"), "method"),
         (lambda t, x: signal.spectrum(t, x, scaling="db"), "scaling"),
