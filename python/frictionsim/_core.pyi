@@ -1,4 +1,4 @@
-# Type information for the compiled engine (bindings/*.cpp), generated with pybind11-stubgen from the built module;
+# Type information for the compiled engine (bindings/*.cpp), generated from the built module by a pybind11 .pyi generator;
 # numeric parameter types simplified to float / int. Regenerate when the bindings change.
 """
 frictionsim C++ engine: friction laws, rigs and the hybrid (stick-slip) integrator.
