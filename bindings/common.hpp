@@ -62,5 +62,6 @@ void register_results(py::module_& m);
 void register_axial(py::module_& m);
 void register_kinematic(py::module_& m);
 void register_contact(py::module_& m);
+void register_torsional(py::module_& m);
 
 }  // namespace frictionsim::python

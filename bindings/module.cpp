@@ -11,4 +11,5 @@ PYBIND11_MODULE(_core, m) {
     register_axial(m);
     register_kinematic(m);
     register_contact(m);
+    register_torsional(m);
 }

@@ -16,7 +16,7 @@ __all__ = ["simulate", "METHODS"]
 #: Integrator names accepted by simulate(method=...).
 METHODS = ("automatic", "dormand_prince", "cvode_bdf", "cvode_adams")
 
-Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig"]
+Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig", "_core.TorsionalRig"]
 
 
 def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float = 1e-8, atol: float = 1e-10,
@@ -32,7 +32,7 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
 
     Parameters
     ----------
-    rig : AxialVibrationRig or KinematicRig
+    rig : AxialVibrationRig, KinematicRig or TorsionalRig
     t_end : float, s
     method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams"}
         "automatic" picks CVODE BDF for stiff laws (LuGre) and Dormand-Prince 5(4) otherwise (measured faster
@@ -57,8 +57,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
     SimulationError
         The run stopped early; ``.time_reached`` and ``.partial`` (the Result up to it).
     """
-    if not isinstance(rig, (_core.AxialVibrationRig, _core.KinematicRig)):
-        raise TypeError(f"rig must be an AxialVibrationRig or a KinematicRig, got {type(rig).__name__}")
+    if not isinstance(rig, (_core.AxialVibrationRig, _core.KinematicRig, _core.TorsionalRig)):
+        raise TypeError(f"rig must be an AxialVibrationRig, a KinematicRig or a TorsionalRig, got {type(rig).__name__}")
     if method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
     options = _core.SolverOptions()

@@ -1,0 +1,238 @@
+// The friction contact on a rotating disc: modes, switching functions and the disc's acceleration for any law.
+// The rig supplies the disc speed w, the shaft torque S on the disc (everything but friction, so that
+// J dw/dt = S - T) and the disc inertia J; the contact returns the acceleration and the friction torque T.
+//
+//  * Laws of the engine (Coulomb, Stribeck, Karnopp, Dahl, LuGre) act at a contact radius r: the sliding
+//    velocity is v_r = r w, the torque T = r F(v_r, N), and the force that holds the disc is S / r. Modes,
+//    guards and mode resolution are ContactSwitching's.
+//  * The hysteretic law of paper 001 (eq 6) acts on w and dw/dt directly. Its torque depends on dw/dt, so
+//    every slip branch solves J al = S - T(w, al) exactly (one quadratic per right-hand-side call, the root
+//    continuous with the linear case). Modes, with s = sgn(w) on the slip side:
+//      stick (|w| <= w_s, T = a w) -> leaves through |w| = w_s onto the branch that is consistent there;
+//      accelerating s (s al > 0):  guards  S' - P0(|w|) (al reaches 0), D, B;
+//      decelerating s (s al < 0):  guards  N0(|w|) - S' (al reaches 0), |w| - w_s (enters stick), D, B;
+//      hold s (al = 0, BranchGap::hold): guards P0 - S' (to accelerating), S' - N0 (to decelerating);
+//    with S' = s S, D the discriminant and B the effective inertia of the branch quadratic: D or B reaching
+//    zero means the branch has no real root left, and the run stops with a SimulationError saying where.
+//    A branch is consistent when its root has the branch's sign: accelerating iff S' > P0, decelerating iff
+//    S' < N0. Where both are (N0 > P0) the current branch is kept until its own al reaches zero (hysteresis);
+//    where neither is (N0 <= S' <= P0), BranchGap decides.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <string>
+
+#include "../error.hpp"
+#include "../friction/hysteretic.hpp"
+#include "../solve/options.hpp"
+#include "contact_switching.hpp"
+
+namespace frictionsim {
+
+/// The disc's response in one mode: dw/dt and the friction torque T (N m) with J dw/dt = S - T.
+struct DiscResponse {
+    double acceleration;
+    double torque;
+};
+
+template <class Law>
+class DiscContact {
+    using Switching = ContactSwitching<Law>;
+
+public:
+    static constexpr std::size_t state_count = Law::state_count;
+    static constexpr std::size_t guard_count = Switching::guard_count;
+    static constexpr bool stiff = declares_stiff<Law>::value;
+    static constexpr std::array<int, 3> modes{slip_negative, stick, slip_positive};
+
+    DiscContact(Law law, double contact_radius, double normal_force)
+        : law_(std::move(law)), radius_(contact_radius), normal_force_(normal_force) {}
+
+    const Law& law() const { return law_; }
+
+    DiscResponse respond(double w, double shaft_torque, const double* z, int mode, double inertia) const {
+        const double f = Switching::force(law_, radius_ * w, normal_force_, z, mode, shaft_torque / radius_);
+        const double torque = radius_ * f;
+        return {(shaft_torque - torque) / inertia, torque};
+    }
+    void state_derivative(double w, const double* z, int mode, double* dz) const {
+        if constexpr (state_count > 0) law_.state_derivative(radius_ * w, normal_force_, z, mode, dz);
+        else (void)w, (void)z, (void)mode, (void)dz;
+    }
+    void guards(double w, double shaft_torque, const double*, int mode, double, double* g) const {
+        Switching::guards(law_, radius_ * w, normal_force_, mode, shaft_torque / radius_, g);
+    }
+    int guard_direction(std::size_t i, int mode) const { return Switching::guard_direction(i, mode); }
+    const char* guard_name(std::size_t i, int mode) const { return Switching::guard_name(law_, i, mode); }
+    const char* mode_name(int mode) const { return Switching::mode_name(law_, mode); }
+    int initial_mode(double w, double shaft_torque, const double* z, double) const {
+        return Switching::initial_mode(law_, radius_ * w, normal_force_, z, shaft_torque / radius_);
+    }
+    /// New mode at a root; projects w to exactly zero on entering stick.
+    int switch_mode(double, double& w, double shaft_torque, const double*, int mode, const int* fired,
+                    double) const {
+        bool stop = false;
+        const int next = Switching::switch_mode(law_, normal_force_, mode, fired, shaft_torque / radius_, stop);
+        if (stop) w = 0.0;
+        return next;
+    }
+
+private:
+    Law law_;
+    double radius_, normal_force_;
+};
+
+template <>
+class DiscContact<HystereticFriction> {
+public:
+    static constexpr std::size_t state_count = 0;
+    static constexpr std::size_t guard_count = 4;
+    /// The band's time constant J / (a N/N_ref) is ~1e-5 s against a ~1 s cycle: BDF.
+    static constexpr bool stiff = true;
+    enum Mode : int { hold_negative = -3, decelerating_negative = -2, accelerating_negative = -1, stick_band = 0,
+                      accelerating_positive = 1, decelerating_positive = 2, hold_positive = 3 };
+    static constexpr std::array<int, 7> modes{hold_negative, decelerating_negative, accelerating_negative,
+                                              stick_band,    accelerating_positive, decelerating_positive,
+                                              hold_positive};
+
+    DiscContact(HystereticFriction law, double /*contact_radius: eq 6 is a torque law*/, double normal_force)
+        : law_(std::move(law)), normal_force_(normal_force) {}
+
+    const HystereticFriction& law() const { return law_; }
+
+    DiscResponse respond(double w, double shaft_torque, const double*, int mode, double inertia) const {
+        if (mode == stick_band) {
+            const double torque = law_.stick_torque(w, normal_force_);
+            return {(shaft_torque - torque) / inertia, torque};
+        }
+        const double s = side(mode);
+        if (is_hold(mode)) return {0.0, shaft_torque};
+        const double b = equation(mode, w, shaft_torque, inertia).root();
+        return {s * b, shaft_torque - inertia * s * b};
+    }
+    void state_derivative(double, const double*, int, double*) const {}
+
+    void guards(double w, double shaft_torque, const double*, int mode, double inertia, double* g) const {
+        g[0] = g[1] = g[2] = g[3] = 1.0;
+        const double w_s = law_.params().stick_speed;
+        if (mode == stick_band) {
+            g[0] = w_s - w;  // leaves the band upwards
+            g[1] = w_s + w;  // leaves it downwards
+            return;
+        }
+        const double s = side(mode), u = s * w, signed_torque = s * shaft_torque;
+        const double k = law_.scale(normal_force_);
+        if (is_hold(mode)) {
+            g[0] = k * law_.branch(true).level(u) - signed_torque;   // S' rises above P0: accelerates
+            g[1] = signed_torque - k * law_.branch(false).level(u);  // S' falls below N0: decelerates
+            return;
+        }
+        const HystereticFriction::Quadratic q = equation(mode, w, shaft_torque, inertia);
+        if (is_accelerating(mode)) {
+            g[0] = -q.c;  // S' - k P0: al reaches zero
+        } else {
+            g[0] = q.c;   // k N0 - S': al reaches zero
+            g[1] = u - w_s;
+        }
+        g[2] = q.a != 0.0 ? q.discriminant() : 1.0;
+        g[3] = q.b;
+    }
+    int guard_direction(std::size_t, int) const { return -1; }
+
+    const char* guard_name(std::size_t i, int mode) const {
+        if (mode == stick_band) return i == 0 ? "stick_band_upper_edge" : "stick_band_lower_edge";
+        if (is_hold(mode)) return i == 0 ? "accelerating_level" : "decelerating_level";
+        static constexpr std::array<const char*, 4> slip{"acceleration_zero", "stick_band_entry",
+                                                         "branch_discriminant", "branch_effective_inertia"};
+        return slip[i];
+    }
+    const char* mode_name(int mode) const {
+        switch (mode) {
+            case hold_negative: return "hold_negative";
+            case decelerating_negative: return "decelerating_negative";
+            case accelerating_negative: return "accelerating_negative";
+            case stick_band: return "stick";
+            case accelerating_positive: return "accelerating_positive";
+            case decelerating_positive: return "decelerating_positive";
+            case hold_positive: return "hold_positive";
+        }
+        return "unknown";
+    }
+
+    int initial_mode(double w, double shaft_torque, const double*, double inertia) const {
+        if (std::abs(w) <= law_.params().stick_speed) return stick_band;
+        return slip_branch(0.0, w, shaft_torque, w > 0.0 ? 1 : -1, 0, inertia);
+    }
+
+    int switch_mode(double t, double& w, double shaft_torque, const double*, int mode, const int* fired,
+                    double inertia) const {
+        if (mode == stick_band) return slip_branch(t, w, shaft_torque, fired[0] != 0 ? 1 : -1, 0, inertia);
+        const int s = mode > 0 ? 1 : -1;
+        if (fired[2] != 0 || fired[3] != 0)
+            no_consistent_branch(t, w, shaft_torque, inertia,
+                                 fired[2] != 0 ? "the branch equation lost its real root (discriminant reached 0)"
+                                               : "the branch's effective inertia J + k (c01 + c11 |w|) reached 0");
+        if (is_hold(mode)) return s * (fired[0] != 0 ? accelerating_positive : decelerating_positive);
+        if (!is_accelerating(mode) && fired[1] != 0) return stick_band;
+        // al reached zero: the other branch if it is consistent, else the gap
+        return slip_branch(t, w, shaft_torque, s, is_accelerating(mode) ? decelerating_positive : accelerating_positive,
+                           inertia);
+    }
+
+    std::array<const char*, 0> state_names() const { return {}; }
+
+private:
+    static int side(int mode) { return mode > 0 ? 1 : -1; }
+    static bool is_hold(int mode) { return mode == hold_positive || mode == hold_negative; }
+    static bool is_accelerating(int mode) { return mode == accelerating_positive || mode == accelerating_negative; }
+
+    HystereticFriction::Quadratic equation(int mode, double w, double shaft_torque, double inertia) const {
+        const double s = side(mode);
+        return law_.branch_equation(is_accelerating(mode), s * w, s * shaft_torque, inertia, normal_force_);
+    }
+
+    /// The consistent slip mode on side s (+1/-1) at speed w; `preferred` (a positive-side branch, or 0 for
+    /// none) is taken when only it is consistent. Accelerating when S' > P0, decelerating when S' < N0.
+    int slip_branch(double t, double w, double shaft_torque, int s, int preferred, double inertia) const {
+        const double u = std::max(s * w, law_.params().stick_speed);  // at the band edge, |w| = w_s
+        const double signed_torque = s * shaft_torque, k = law_.scale(normal_force_);
+        const bool accelerates = signed_torque > k * law_.branch(true).level(u);
+        const bool decelerates = signed_torque < k * law_.branch(false).level(u);
+        int branch = 0;
+        if (accelerates && decelerates) branch = preferred != 0 ? preferred : accelerating_positive;
+        else if (accelerates) branch = accelerating_positive;
+        else if (decelerates) branch = decelerating_positive;
+        if (branch == 0) {
+            if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
+            no_consistent_branch(t, w, shaft_torque, inertia,
+                                 "the shaft torque lies between the decelerating level N0 and the accelerating "
+                                 "level P0 (eq 6 has no case for dw/dt = 0)");
+        }
+        const HystereticFriction::Quadratic q =
+            law_.branch_equation(branch == accelerating_positive, u, signed_torque, inertia, normal_force_);
+        if (q.b <= 0.0 || (q.a != 0.0 && q.discriminant() < 0.0))
+            no_consistent_branch(t, w, shaft_torque, inertia, "the consistent branch's equation has no real root");
+        return s * branch;
+    }
+
+    [[noreturn]] void no_consistent_branch(double t, double w, double shaft_torque, double inertia,
+                                           const char* why) const {
+        const double u = std::max(std::abs(w), law_.params().stick_speed), k = law_.scale(normal_force_);
+        std::ostringstream msg;
+        msg.precision(10);
+        msg << "hysteretic friction (eq 6): no consistent friction branch at t = " << t << " s, disc speed w = " << w
+            << " rad/s, shaft torque S = " << shaft_torque << " N m (accelerating level P0 = "
+            << k * law_.branch(true).level(u) << " N m, decelerating level N0 = " << k * law_.branch(false).level(u)
+            << " N m, disc inertia " << inertia << " kg m^2): " << why
+            << "; use branch_gap = hold, or coefficients with N0 >= P0 there";
+        throw SimulationError(msg.str(), t);
+    }
+
+    HystereticFriction law_;
+    double normal_force_;
+};
+
+}  // namespace frictionsim
