@@ -4,6 +4,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <limits>
+#include <string>
+
 #include "common.hpp"
 
 namespace frictionsim::python {
@@ -115,6 +118,27 @@ void register_results(py::module_& m) {
     m.def("mean_over_window", py::overload_cast<const std::vector<double>&, const std::vector<double>&, double, double>(
               &mean_over_window), py::arg("t"), py::arg("y"), py::arg("t_a"), py::arg("t_b"),
           "Mean of sampled y(t) over [t_a, t_b] (trapezoid rule, interpolated window ends).");
+    m.def("limit_cycle", [](py::array_t<double, py::array::c_style | py::array::forcecast> t,
+                            py::array_t<double, py::array::c_style | py::array::forcecast> w, double transient,
+                            std::optional<double> level, double stick_speed, double hysteresis) {
+        if (t.ndim() != 1) throw InvalidParameter("t", "limit_cycle: t must be one-dimensional");
+        if (w.ndim() != 1) throw InvalidParameter("w", "limit_cycle: w must be one-dimensional");
+        if (w.shape(0) != t.shape(0))
+            throw InvalidParameter("w", "limit_cycle: w must have the same length as t (" + std::to_string(t.shape(0)) +
+                                            " samples, got " + std::to_string(w.shape(0)) + ")");
+        LimitCycle c;
+        {
+            py::gil_scoped_release release;
+            c = limit_cycle(t.data(), w.data(), static_cast<std::size_t>(t.shape(0)), transient, level ? *level : std::numeric_limits<double>::quiet_NaN(), stick_speed, hysteresis);
+        }
+        return py::dict(py::arg("cycles") = c.cycles, py::arg("period") = c.period, py::arg("frequency") = c.frequency,
+                        py::arg("peak") = c.peak, py::arg("trough") = c.trough, py::arg("mean") = c.mean,
+                        py::arg("stick_fraction") = c.stick_fraction, py::arg("level") = c.level,
+                        py::arg("start") = c.start, py::arg("end") = c.end);
+    }, py::arg("t"), py::arg("w"), py::arg("transient") = 0.0, py::arg("level") = py::none(),
+          py::arg("stick_speed") = 1e-2, py::arg("hysteresis") = 0.05,
+          "Limit cycle of speed samples w(t) after a transient (analysis/limit_cycle.hpp): a dict of cycles, period, "
+          "frequency, peak, trough, mean, stick_fraction, level, start, end.");
 }
 
 }  // namespace frictionsim::python

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "analysis/cycle_mean.hpp"
+#include "analysis/limit_cycle.hpp"
 #include "contact/hydraulic_oscillator.hpp"
 #include "error.hpp"
 #include "friction/coulomb.hpp"

@@ -8,7 +8,8 @@
 //  * The hysteretic law of paper 001 (eq 6) acts on w and dw/dt directly. Its torque depends on dw/dt, so
 //    every slip branch solves J al = S - T(w, al) exactly (one quadratic per right-hand-side call, the root
 //    continuous with the linear case). Modes, with s = sgn(w) on the slip side:
-//      stick (|w| <= w_s, T = a w) -> leaves through |w| = w_s onto the branch that is consistent there;
+//      stick (|w| <= w_s, T = a w) -> leaves through |w| = w_s onto the accelerating branch if it is
+//        consistent there, else slides along the band edge (the branch gap);
 //      accelerating s (s al > 0):  guards  S' - P0(|w|) (al reaches 0), D, B;
 //      decelerating s (s al < 0):  guards  N0(|w|) - S' (al reaches 0), |w| - w_s (enters stick), D, B;
 //      hold s (al = 0, BranchGap::hold): guards P0 - S' (to accelerating), S' - N0 (to decelerating);
@@ -169,7 +170,7 @@ public:
 
     int switch_mode(double t, double& w, double shaft_torque, const double*, int mode, const int* fired,
                     double inertia) const {
-        if (mode == stick_band) return slip_branch(t, w, shaft_torque, fired[0] != 0 ? 1 : -1, 0, inertia);
+        if (mode == stick_band) return leave_band(t, w, shaft_torque, fired[0] != 0 ? 1 : -1, inertia);
         const int s = mode > 0 ? 1 : -1;
         if (fired[2] != 0 || fired[3] != 0)
             no_consistent_branch(t, w, shaft_torque, inertia,
@@ -194,8 +195,25 @@ private:
         return law_.branch_equation(is_accelerating(mode), s * w, s * shaft_torque, inertia, normal_force_);
     }
 
+    /// Leaving the stick band on side s: the band pushes the disc out (a w_s < S'), so only the accelerating
+    /// branch can take it; if S' <= P0(w_s) that branch would push it back, and the disc slides along the band
+    /// edge with dw/dt = 0 and T = S (Filippov), which is the branch gap at |w| = w_s.
+    int leave_band(double t, double w, double shaft_torque, int s, double inertia) const {
+        const double signed_torque = s * shaft_torque, k = law_.scale(normal_force_);
+        if (signed_torque > k * law_.branch(true).level(law_.params().stick_speed))
+            return slip_branch(t, w, shaft_torque, s, accelerating_positive, inertia);
+        return branch_gap(t, w, shaft_torque, s, inertia);
+    }
+
+    int branch_gap(double t, double w, double shaft_torque, int s, double inertia) const {
+        if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
+        no_consistent_branch(t, w, shaft_torque, inertia,
+                             "the shaft torque lies between the decelerating level N0 and the accelerating level "
+                             "P0 (eq 6 has no case for dw/dt = 0)");
+    }
+
     /// The consistent slip mode on side s (+1/-1) at speed w; `preferred` (a positive-side branch, or 0 for
-    /// none) is taken when only it is consistent. Accelerating when S' > P0, decelerating when S' < N0.
+    /// none) is taken when both are consistent. Accelerating when S' > P0, decelerating when S' < N0.
     int slip_branch(double t, double w, double shaft_torque, int s, int preferred, double inertia) const {
         const double u = std::max(s * w, law_.params().stick_speed);  // at the band edge, |w| = w_s
         const double signed_torque = s * shaft_torque, k = law_.scale(normal_force_);
@@ -205,12 +223,7 @@ private:
         if (accelerates && decelerates) branch = preferred != 0 ? preferred : accelerating_positive;
         else if (accelerates) branch = accelerating_positive;
         else if (decelerates) branch = decelerating_positive;
-        if (branch == 0) {
-            if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
-            no_consistent_branch(t, w, shaft_torque, inertia,
-                                 "the shaft torque lies between the decelerating level N0 and the accelerating "
-                                 "level P0 (eq 6 has no case for dw/dt = 0)");
-        }
+        if (branch == 0) return branch_gap(t, w, shaft_torque, s, inertia);
         const HystereticFriction::Quadratic q =
             law_.branch_equation(branch == accelerating_positive, u, signed_torque, inertia, normal_force_);
         if (q.b <= 0.0 || (q.a != 0.0 && q.discriminant() < 0.0))
