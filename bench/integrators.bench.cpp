@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <frictionsim/analysis/cycle_mean.hpp>
+#include <frictionsim/analysis/limit_cycle.hpp>
 #include <frictionsim/simulate.hpp>
 
 using namespace frictionsim;
@@ -71,8 +72,37 @@ void lugre_stick_slip(benchmark::State& state, Method method) {
     report(state, r, r.state(0, 1));
 }
 
+/// Paper 001's torsional rig at Fig. 7's operating point (w_ref = 5.76 rad/s, N2 = 35 N), 30 s from rest: about
+/// 22 stick-slip cycles. `value` is the limit-cycle frequency over the last 15 s (0.835 Hz with eq 6).
+template <class Law>
+void torsional_stick_slip(benchmark::State& state, Law law, Method method) {
+    const TorsionalRig<Law> rig(TorsionalRigParams{}, std::move(law));
+    SolverOptions o;
+    o.method = method;
+    o.rtol = 1e-8;
+    o.atol = 1e-10;
+    for (int i = 0; i <= 3000; ++i) o.output_times.push_back(0.01 * i);
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, 30.0, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    const std::vector<double> w = r.column_values("disc_speed");
+    report(state, r, limit_cycle(r.t.data(), w.data(), r.rows(), 15.0).frequency);
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(torsional_stick_slip, hysteretic_cvode_bdf, paper001_fig7_friction(), Method::cvode_bdf)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(torsional_stick_slip, hysteretic_dormand_prince, paper001_fig7_friction(), Method::dormand_prince)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(torsional_stick_slip, stribeck_dormand_prince,
+                  Stribeck(Stribeck::Params{0.22, 0.3566, 0.3, 1.0, 0.0, 0.0}), Method::dormand_prince)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(torsional_stick_slip, stribeck_cvode_bdf, Stribeck(Stribeck::Params{0.22, 0.3566, 0.3, 1.0, 0.0, 0.0}),
+                  Method::cvode_bdf)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, dormand_prince_1e8, Method::dormand_prince, 1e-8)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, cvode_bdf_1e8, Method::cvode_bdf, 1e-8)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, cvode_adams_1e8, Method::cvode_adams, 1e-8)->Unit(benchmark::kMillisecond);

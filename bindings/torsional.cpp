@@ -223,6 +223,11 @@ branch_gap : {"hold", "error"}
                                        t[3].cast<double>(), t[4].cast<double>(), t[5].cast<std::string>());
             }));
 
+    m.def("paper001_fig7_friction", [](const std::string& branch_gap) {
+        return paper001_fig7_friction(branch_gap_from(branch_gap));
+    }, py::arg("branch_gap") = "hold",
+          "The eq 6 law chosen to reproduce paper 001's Fig. 7 (0.835 Hz, peak 13.8 rad/s at w_ref = 5.76 rad/s, N2 = 35 N).");
+
     std::string doc = R"doc(
 The torsional drill-string rig of paper 001 (eqs 1-5): disc D2 on a shaft (k2, d2), driven through a gear
 eta:1 by a DC motor (L, R, K_T, K_E, T_f, C_m, J_m) under PI speed control of the load-side speed w3, with

@@ -34,20 +34,16 @@ __all__ = ["FIG7", "LimitCycle", "StickSlipMap", "compare_laws", "fig7_friction"
 FIG7 = {"reference_speed": 5.76, "normal_force": 35.0, "frequency_measured": 0.83, "frequency_simulated": 0.84,
         "peak_measured": 13.55, "peak_simulated": 14.0}
 
-# Eq 6 coefficients (p00, p10, p01, p20, p11, p02) in N m, N m s/rad, kg m^2, N m s^2/rad^2, N m s^3/rad^2,
-# N m s^4/rad^2. A Stribeck-like fall of the level with speed (p10 < 0, p20 > 0: velocity weakening, so steady
-# rotation at 5.76 rad/s is unstable), the decelerating branch 0.03 N m above the accelerating one (the
-# hysteresis loop of Fig. 5a, and both branches consistent at dw/dt = 0, so eq 6 needs no gap rule here), and the
-# tuned acceleration coefficient. Break-away a w_s = 1.384 N m.
-_FIG7_ACCELERATING = (0.95, -0.02, -0.00277, 0.0005, 0.0, 2e-5)
-_FIG7_DECELERATING = (0.98, -0.02, -0.00277, 0.0005, 0.0, 2e-5)
-_FIG7_STICK_SLOPE = 1384.0  # N m s/rad, with w_s = 1e-3 rad/s
-
-
 def fig7_friction(branch_gap: str = "hold") -> "_core.HystereticFriction":
-    """The eq 6 friction law chosen to reproduce paper 001's Fig. 7 (see the module docstring)."""
-    return _core.HystereticFriction(_FIG7_STICK_SLOPE, _FIG7_ACCELERATING, _FIG7_DECELERATING, stick_speed=1e-3,
-                                    reference_normal_force=35.0, branch_gap=branch_gap)
+    """The eq 6 friction law chosen to reproduce paper 001's Fig. 7 (C++ ``paper001_fig7_friction``):
+
+    p = (0.95, -0.02, -0.00277, 0.0005, 0, 2e-5), n = (0.98, -0.02, -0.00277, 0.0005, 0, 2e-5) in SI units,
+    stick slope 1384 N m s/rad with w_s = 1e-3 rad/s (break-away 1.384 N m), at N_ref = 35 N. A Stribeck-like
+    level falling with speed (p10 < 0: steady rotation at 5.76 rad/s is unstable), the decelerating branch 0.03 N m
+    above the accelerating one (Fig. 5a's loop; both branches consistent at dw/dt = 0, so no gap rule is needed
+    here), and the tuned acceleration coefficient.
+    """
+    return _core.paper001_fig7_friction(branch_gap)
 
 
 def fig7_laws() -> Dict[str, Any]:
