@@ -209,7 +209,8 @@ private:
         if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
         no_consistent_branch(t, w, shaft_torque, inertia,
                              "the shaft torque lies between the decelerating level N0 and the accelerating level "
-                             "P0 (eq 6 has no case for dw/dt = 0)");
+                             "P0 (eq 6 has no case for dw/dt = 0)",
+                             "; branch_gap = hold holds dw/dt = 0 there (Filippov), or use coefficients with N0 >= P0");
     }
 
     /// The consistent slip mode on side s (+1/-1) at speed w; `preferred` (a positive-side branch, or 0 for
@@ -231,16 +232,16 @@ private:
         return s * branch;
     }
 
-    [[noreturn]] void no_consistent_branch(double t, double w, double shaft_torque, double inertia,
-                                           const char* why) const {
+    [[noreturn]] void no_consistent_branch(double t, double w, double shaft_torque, double inertia, const char* why,
+                                           const char* hint = "; check the branch's coefficients over this speed "
+                                                              "range (p02, n02 and the effective inertia)") const {
         const double u = std::max(std::abs(w), law_.params().stick_speed), k = law_.scale(normal_force_);
         std::ostringstream msg;
         msg.precision(10);
         msg << "hysteretic friction (eq 6): no consistent friction branch at t = " << t << " s, disc speed w = " << w
             << " rad/s, shaft torque S = " << shaft_torque << " N m (accelerating level P0 = "
             << k * law_.branch(true).level(u) << " N m, decelerating level N0 = " << k * law_.branch(false).level(u)
-            << " N m, disc inertia " << inertia << " kg m^2): " << why
-            << "; use branch_gap = hold, or coefficients with N0 >= P0 there";
+            << " N m, disc inertia " << inertia << " kg m^2): " << why << hint;
         throw SimulationError(msg.str(), t);
     }
 

@@ -4,6 +4,9 @@ Identification by output-error least squares, one module a job:
 
 * :mod:`.kinematic`: identify_dahl / identify_lugre / identify_stribeck / identify on the kinematic rig;
 * :mod:`.rig`: identify_axial_rig, the law inside paper 000's axial vibrating-sliding rig;
+* :mod:`.torsional`: paper 001's identification of the hysteretic law (eq 6) on the torsional rig, by linear least
+  squares: estimate_friction_torque (eq 1a from the encoder angles, FrictionTorqueEstimate) and
+  fit_hysteretic_friction (stick slope and poly22 branches; HystereticFit, BranchFit);
 * :mod:`.parameters` (each law's parameters), :mod:`.search_space` (log / linear search variables, bounds),
   :mod:`.validation` (the record), :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`,
   :mod:`.solver` (scan, least_squares, differential_evolution), :mod:`.uncertainty` (covariance,
@@ -15,6 +18,9 @@ from .kinematic import identify, identify_dahl, identify_lugre, identify_stribec
 from .parameters import LAW_PARAMETERS
 from .result import IdentificationResult
 from .rig import identify_axial_rig
+from .torsional import (BranchFit, FrictionTorqueEstimate, HystereticFit, estimate_friction_torque,
+                        fit_hysteretic_friction)
 
 __all__ = ["PowerLawFit", "fit_power_law", "IdentificationResult", "LAW_PARAMETERS", "identify", "identify_dahl",
-           "identify_lugre", "identify_stribeck", "identify_axial_rig"]
+           "identify_lugre", "identify_stribeck", "identify_axial_rig", "FrictionTorqueEstimate",
+           "estimate_friction_torque", "BranchFit", "HystereticFit", "fit_hysteretic_friction"]
