@@ -55,7 +55,10 @@ public:
     const Law& law() const { return law_; }
 
     DiscResponse respond(double w, double shaft_torque, const double* z, int mode, double inertia) const {
-        const double f = Switching::force(law_, radius_ * w, normal_force_, z, mode, shaft_torque / radius_);
+        const double holding = shaft_torque / radius_;
+        const double f = Switching::force(law_, radius_ * w, normal_force_, z, mode, holding);
+        if constexpr (Switching::set_valued)
+            if (mode == stick && f == holding) return {0.0, shaft_torque};  // held: exactly, not S - r (S / r)
         const double torque = radius_ * f;
         return {(shaft_torque - torque) / inertia, torque};
     }
@@ -139,7 +142,7 @@ public:
             g[1] = u - w_s;
         }
         g[2] = q.a != 0.0 ? q.discriminant() : 1.0;
-        g[3] = q.b;
+        g[3] = q.b - min_effective_inertia * inertia;
     }
     int guard_direction(std::size_t, int) const { return -1; }
 
@@ -175,7 +178,8 @@ public:
         if (fired[2] != 0 || fired[3] != 0)
             no_consistent_branch(t, w, shaft_torque, inertia,
                                  fired[2] != 0 ? "the branch equation lost its real root (discriminant reached 0)"
-                                               : "the branch's effective inertia J + k (c01 + c11 |w|) reached 0");
+                                               : "the branch's effective inertia J + k (c01 + c11 |w|) fell to 1 % of J "
+                                                 "(dw/dt grows without bound as it reaches 0)");
         if (is_hold(mode)) return s * (fired[0] != 0 ? accelerating_positive : decelerating_positive);
         if (!is_accelerating(mode) && fired[1] != 0) return stick_band;
         // al reached zero: the other branch if it is consistent, else the gap
@@ -186,6 +190,10 @@ public:
     std::array<const char*, 0> state_names() const { return {}; }
 
 private:
+    /// A branch whose effective inertia B falls to this fraction of J stops the run: dw/dt = -C/B diverges as
+    /// B -> 0, and an integrator fails on the way before a guard at exactly 0 could be located.
+    static constexpr double min_effective_inertia = 0.01;
+
     static int side(int mode) { return mode > 0 ? 1 : -1; }
     static bool is_hold(int mode) { return mode == hold_positive || mode == hold_negative; }
     static bool is_accelerating(int mode) { return mode == accelerating_positive || mode == accelerating_negative; }
@@ -202,7 +210,12 @@ private:
         const double signed_torque = s * shaft_torque, k = law_.scale(normal_force_);
         if (signed_torque > k * law_.branch(true).level(law_.params().stick_speed))
             return slip_branch(t, w, shaft_torque, s, accelerating_positive, inertia);
-        return branch_gap(t, w, shaft_torque, s, inertia);
+        if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
+        no_consistent_branch(t, w, shaft_torque, inertia,
+                             "the band's break-away torque a w_s is below the accelerating level P0(w_s), so the "
+                             "accelerating branch is not consistent at the band edge",
+                             "; raise stick_slope to at least P0(w_s) / w_s, or use branch_gap = hold (the disc then "
+                             "slides along the band edge until S reaches P0)");
     }
 
     int branch_gap(double t, double w, double shaft_torque, int s, double inertia) const {
@@ -227,7 +240,7 @@ private:
         if (branch == 0) return branch_gap(t, w, shaft_torque, s, inertia);
         const HystereticFriction::Quadratic q =
             law_.branch_equation(branch == accelerating_positive, u, signed_torque, inertia, normal_force_);
-        if (q.b <= 0.0 || (q.a != 0.0 && q.discriminant() < 0.0))
+        if (q.b <= min_effective_inertia * inertia || (q.a != 0.0 && q.discriminant() < 0.0))
             no_consistent_branch(t, w, shaft_torque, inertia, "the consistent branch's equation has no real root");
         return s * branch;
     }
