@@ -120,7 +120,7 @@ void register_results(py::module_& m) {
           "Mean of sampled y(t) over [t_a, t_b] (trapezoid rule, interpolated window ends).");
     m.def("limit_cycle", [](py::array_t<double, py::array::c_style | py::array::forcecast> t,
                             py::array_t<double, py::array::c_style | py::array::forcecast> w, double transient,
-                            std::optional<double> level, double stick_speed, double hysteresis) {
+                            std::optional<double> level, double stick_speed, double hysteresis, double min_amplitude) {
         if (t.ndim() != 1) throw InvalidParameter("t", "limit_cycle: t must be one-dimensional");
         if (w.ndim() != 1) throw InvalidParameter("w", "limit_cycle: w must be one-dimensional");
         if (w.shape(0) != t.shape(0))
@@ -129,14 +129,16 @@ void register_results(py::module_& m) {
         LimitCycle c;
         {
             py::gil_scoped_release release;
-            c = limit_cycle(t.data(), w.data(), static_cast<std::size_t>(t.shape(0)), transient, level ? *level : std::numeric_limits<double>::quiet_NaN(), stick_speed, hysteresis);
+            c = limit_cycle(t.data(), w.data(), static_cast<std::size_t>(t.shape(0)), transient,
+                            level ? *level : std::numeric_limits<double>::quiet_NaN(), stick_speed, hysteresis,
+                            min_amplitude);
         }
         return py::dict(py::arg("cycles") = c.cycles, py::arg("period") = c.period, py::arg("frequency") = c.frequency,
                         py::arg("peak") = c.peak, py::arg("trough") = c.trough, py::arg("mean") = c.mean,
                         py::arg("stick_fraction") = c.stick_fraction, py::arg("level") = c.level,
                         py::arg("start") = c.start, py::arg("end") = c.end);
     }, py::arg("t"), py::arg("w"), py::arg("transient") = 0.0, py::arg("level") = py::none(),
-          py::arg("stick_speed") = 1e-2, py::arg("hysteresis") = 0.05,
+          py::arg("stick_speed") = 1e-2, py::arg("hysteresis") = 0.05, py::arg("min_amplitude") = 0.0,
           "Limit cycle of speed samples w(t) after a transient (analysis/limit_cycle.hpp): a dict of cycles, period, "
           "frequency, peak, trough, mean, stick_fraction, level, start, end.");
 }

@@ -1,7 +1,8 @@
 """The ``frictionsim`` command line.
 
     frictionsim run SCENARIO.toml [--out DIR]   simulate a scenario file (see frictionsim.scenario)
-    frictionsim demo [--out DIR] [--quick]      paper 000's Fig. 7 cases, friction reduction, Table 5 refit
+    frictionsim demo [--out DIR] [--quick]      paper 000's Fig. 7 cases, friction reduction, Table 5 refit;
+                                                paper 001's torsional rig: Fig. 7, law comparison, stick-slip map
     frictionsim fit-table5 [--out DIR]          refit Table 5 from Table 4 and plot Fig. 11
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
@@ -60,8 +61,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="frictionsim",
-        description="Friction-driven dynamics in drilling: simulate paper 000's axial vibrating-sliding rig and "
-                    "kinematic friction rigs with Coulomb, Stribeck, Dahl and LuGre friction.",
+        description="Friction-driven dynamics in drilling: simulate paper 000's axial vibrating-sliding rig, "
+                    "kinematic friction rigs and paper 001's torsional drill-string rig with Coulomb, Stribeck, "
+                    "Dahl, LuGre and hysteretic (eq 6) friction.",
         epilog="Scenario files are TOML; see examples/scenarios/ and `python -c 'help(\"frictionsim.scenario\")'`.")
     parser.add_argument("--version", action="version", version=f"frictionsim {__version__}")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")
@@ -74,12 +76,17 @@ def _parser() -> argparse.ArgumentParser:
                                               "out/<file stem>)")
     run.set_defaults(command=_run)
 
-    demo = commands.add_parser("demo", help="paper 000 demo: Fig. 7 cases, friction reduction, Table 5 refit",
+    demo = commands.add_parser("demo", help="papers 000 and 001: Fig. 7 cases, friction reduction, Table 5 "
+                                             "refit, torsional stick-slip",
                                description="Built-in scenarios of paper 000: Fig. 7 dry and OBM cases with Coulomb "
                                            "and Dahl friction, friction reduction against Tables 4-5, an amplitude "
-                                           "sweep, and the Table 5 refit with the Fig. 11 plot.")
+                                           "sweep, and the Table 5 refit with the Fig. 11 plot. Paper 001 (into "
+                                           "OUT/paper001/): the torsional rig at Fig. 7's operating point with eq 6, "
+                                           "Stribeck and LuGre friction, the limit cycle of every law against the "
+                                           "paper's frequency and peak speed, and a stick-slip map over w_ref and "
+                                           "N2.")
     demo.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
-    demo.add_argument("--quick", action="store_true", help="a shorter amplitude sweep")
+    demo.add_argument("--quick", action="store_true", help="a shorter amplitude sweep and a smaller stick-slip map")
     demo.set_defaults(command=_demo)
 
     fit = commands.add_parser("fit-table5", help="refit Table 5 from Table 4, print both, plot Fig. 11",
@@ -110,6 +117,14 @@ def _run(args) -> int:
     result = ScenarioRun(scenario, runs)
     summary = result.summary()
     print(f"{args.scenario}: {scenario.title}" if scenario.title else str(args.scenario))
+    if result.torsional:
+        from .scenario_torsional import SUMMARY_COLUMNS, SUMMARY_NOTE
+
+        print(format_table(summary, SUMMARY_COLUMNS))
+        print(SUMMARY_NOTE)
+        written = _write(out, result.write)
+        print(f"wrote {out}: {', '.join(str(p) for p in written)}")
+        return 0
     columns = [("case", "case", "s"), ("law", "law", "s"), ("F_N_N", "F_N [N]", ".4g"),
                ("mu_F_N_N", "mu F_N [N]", ".4g"), ("F_df_N", "F_df [N]", ".5g"), ("mu_df", "mu_df", ".4g"),
                ("reduction_percent", "reduction [%]", ".2f")]

@@ -1,4 +1,5 @@
-"""The built-in demo, ``frictionsim demo``: paper 000's axial vibrating-sliding rig (shale on 45 steel).
+"""The built-in demo, ``frictionsim demo``: paper 000's axial vibrating-sliding rig (shale on 45 steel) and paper
+001's torsional drill-string rig.
 
 1. Fig. 7: the dry case (Table 4 run VS3: u0 = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N) and the OBM case
    (VS17: u0 = 4 mm, f = 20 Hz, F_N = 30 N) with Coulomb (eq 8) and Dahl (eq 9) friction side by side: each is a
@@ -13,6 +14,13 @@
    ``friction_reduction.png``).
 4. The Table 5 refit: :func:`frictionsim.fit.fit_power_law` on :func:`frictionsim.data.table4` beside the
    printed Table 5 (``table5_refit.csv``) and the log-log plot of Fig. 11 (``fig11_power_law.png``).
+5. Paper 001, into ``<out>/paper001/``: the built-in scenario ``fig7_torsional`` (the Fig. 7 operating point,
+   w_ref = 5.76 rad/s and N2 = 35 N, with the eq 6, Stribeck and LuGre laws; ``paper001/fig7_torsional/``: time
+   series, summary, disc speed, friction-torque hysteresis and phase-portrait plots); the limit cycle of every
+   law of :func:`frictionsim.torsional.fig7_laws` against the paper's 0.83 / 0.84 Hz, 13.55 / 14 rad/s and
+   f_n = 0.789 Hz (:func:`frictionsim.torsional.compare_laws`, ``law_comparison.csv`` and ``.png``); and the
+   stick-slip map over w_ref and N2 with the eq 6 law (:func:`frictionsim.torsional.stick_slip_map` on two
+   threads, 40 s per point, ``stick_slip_map.csv`` and ``.png``).
 
 Scenario choices follow examples/axial_rig_demo.cpp (the C++ demo): m = 0.2 kg, k_d = 2e4 N/m, mu = 0.41 (dry) and
 0.27 (OBM), Dahl k_t = 40 N/mm (Fig. 10), 2 s with the mean over the last 10 cycles; sweep ratios 0.05-1.5,
@@ -34,11 +42,13 @@ import numpy as np
 
 from . import _core
 from .scenario import AnalysisSpec, Case, RigSpec, Scenario, ScenarioRun, SolverSpec, loads, run, run_case
+from .torsional import FIG7 as PAPER001_FIG7
 
-__all__ = ["BUILTIN_SCENARIOS", "Demo", "builtin_scenario", "compute", "format_table", "table5_refit"]
+__all__ = ["BUILTIN_SCENARIOS", "Demo", "Paper001", "builtin_scenario", "compute", "format_table", "paper001",
+           "table5_refit"]
 
 #: The built-in scenarios: package data (python/frictionsim/scenarios/), linked from examples/scenarios/.
-BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm")
+BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm", "fig7_torsional")
 #: output subdirectory -> built-in scenario
 FIG7 = {"fig7_dry": "fig7_dry_coulomb_vs_dahl", "fig7_obm": "fig7_obm"}
 
@@ -47,6 +57,15 @@ SWEEP_RATIOS = (0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.95, 1.5)
 QUICK_SWEEP_RATIOS = (0.1, 0.4, 0.8, 1.5)
 SWEEP_SETTLE = 8.0  #: s before the 10 averaged cycles of the axial sweep runs (Dahl loads over ~1 mm at 1 mm/s)
 NO_VIBRATION_T_END = 12.0  #: s; without vibration the Dahl force approaches mu F_N with a ~1 s time constant
+
+#: Paper 001: the built-in torsional scenario, and the stick-slip map grid (w_ref [rad/s] x N2 [N]; --quick: smaller)
+PAPER001_SCENARIO = "fig7_torsional"
+MAP_REFERENCE_SPEEDS = (2.0, 4.0, 5.76, 8.0, 10.0, 12.0, 15.0, 18.0, 21.0, 24.0)
+MAP_NORMAL_FORCES = (15.0, 25.0, 35.0, 50.0, 70.0)
+QUICK_MAP_REFERENCE_SPEEDS = (2.0, 5.76, 10.0, 18.0)
+QUICK_MAP_NORMAL_FORCES = (15.0, 35.0, 70.0)
+MAP_T_END, MAP_TRANSIENT = 40.0, 20.0  #: s per map point, as Fig. 7's scenario
+MAP_THREADS = 2
 
 
 def builtin_scenario(name: str) -> Scenario:
@@ -207,6 +226,112 @@ SWEEP_COLUMNS = [("velocity_ratio", "v_d/v_a", ".5g"), ("amplitude_mm", "u0 [mm]
                  ("table5_dry", "Table 5 dry", ".2%"), ("table4_dry", "Table 4 dry", ".2%")]
 
 
+LAW_COLUMNS = [("law", "law", "s"), ("stick_slip_text", "stick-slip", "s"), ("frequency", "f [Hz]", ".4f"),
+               ("frequency_ratio", "f / f_n", ".3f"), ("peak", "peak [rad/s]", ".4g"),
+               ("trough", "trough [rad/s]", ".3g"), ("stick_fraction", "stick", ".3f"),
+               ("events", "events", ".0f"), ("steps", "steps", ".0f")]
+
+
+@dataclass
+class Paper001:
+    """Paper 001's part of the demo: the Fig. 7 scenario, the law comparison and the stick-slip map."""
+
+    fig7: ScenarioRun  #: the built-in fig7_torsional scenario, run
+    laws: "object"  #: pandas DataFrame of frictionsim.torsional.compare_laws (law_comparison.csv)
+    map: "object"  #: frictionsim.torsional.StickSlipMap (stick_slip_map.csv)
+    map_seconds: float  #: wall time of the map [s]
+
+    def law_table(self):
+        """The law comparison with the paper's Fig. 7 values as two extra rows (for printing)."""
+        import pandas as pd
+
+        laws = self.laws.copy()
+        natural = float(laws["natural_frequency"].iloc[0])
+        laws["frequency_ratio"] = laws["frequency"] / natural
+        laws["stick_slip_text"] = np.where(laws["stick_slip"], "yes", "no")
+        paper = [{"law": f"paper 001 {kind}", "stick_slip_text": "yes", "frequency": PAPER001_FIG7[f"frequency_{kind}"],
+                  "frequency_ratio": PAPER001_FIG7[f"frequency_{kind}"] / natural,
+                  "peak": PAPER001_FIG7[f"peak_{kind}"]} for kind in ("measured", "simulated")]
+        return pd.concat([laws, pd.DataFrame(paper)], ignore_index=True)
+
+    def map_text(self) -> str:
+        """The map as text: rows N2, columns w_ref; peak disc speed / w_ref, * where the disc sticks."""
+        m = self.map
+        header = "N2 [N] \\ w_ref [rad/s]"
+        cells = [[header] + [f"{w:g}" for w in m.reference_speeds]]
+        for j, force in enumerate(m.normal_forces):
+            cells.append([f"{force:g}"] + [("*" if m.stick_slip[i, j] else " ") + f"{m.peak_ratio[i, j]:.2f}"
+                                           for i in range(len(m.reference_speeds))])
+        widths = [max(len(r[k]) for r in cells) for k in range(len(cells[0]))]
+        return "\n".join("  ".join(v.ljust(widths[k]) if k == 0 else v.rjust(widths[k]) for k, v in enumerate(r))
+                         for r in cells)
+
+    def report(self, quick: bool) -> List[str]:
+        rig = self.fig7.runs[0].rig
+        summary = self.fig7.summary()
+        from .scenario_torsional import SUMMARY_COLUMNS, SUMMARY_NOTE
+
+        m = self.map
+        return [
+            "paper 001: torsional drill-string rig (DC motor + PI speed control, gear 8:1, shaft, disc; eqs 1-6, "
+            "Tables 1-2)",
+            f"4. Fig. 7 operating point: w_ref = {rig.reference_speed:g} rad/s, N2 = {rig.normal_force:g} N, "
+            f"{self.fig7.runs[0].case.solver.t_end:g} s from rest, limit cycle after "
+            f"{summary['transient_s'].iloc[0]:g} s (scenario fig7_torsional)",
+            format_table(summary, [c for c in SUMMARY_COLUMNS if c[0] not in ("steps",)]),
+            "   " + SUMMARY_NOTE,
+            "",
+            f"5. Friction laws at the Fig. 7 point (frictionsim.torsional.fig7_laws; chosen sets, the paper prints "
+            f"none), against paper 001 Fig. 7;",
+            f"   f_n = sqrt(k2/J2)/2 pi = {float(self.laws['natural_frequency'].iloc[0]):.3f} Hz: laws of speed "
+            "alone stay below it, eq 6's negative acceleration coefficient lifts f above it",
+            format_table(self.law_table(), LAW_COLUMNS),
+            "",
+            f"6. Stick-slip map, eq 6 law: peak disc speed / w_ref, * = the disc sticks in the limit cycle "
+            f"({m.stick_slip.sum()} of {m.stick_slip.size} points; {MAP_T_END:g} s per point, limit cycle after "
+            f"{MAP_TRANSIENT:g} s;",
+            f"   {m.stick_slip.size} simulations on {MAP_THREADS} threads in {self.map_seconds:.2f} s"
+            + ("; --quick grid" if quick else "") + ")",
+            self.map_text(),
+        ]
+
+    def write(self, directory: Path) -> List[Path]:
+        """Write paper001/: fig7_torsional/ (the scenario's outputs), law_comparison.csv/.png,
+        stick_slip_map.csv/.png."""
+        from . import plots
+
+        (directory / PAPER001_SCENARIO).mkdir(parents=True)
+        written = self.fig7.write(directory / PAPER001_SCENARIO)
+        written.append(directory / "law_comparison.csv")
+        self.laws.to_csv(written[-1], index=False, float_format="%.10g")
+        written.append(directory / "stick_slip_map.csv")
+        self.map.to_pandas().to_csv(written[-1], index=False, float_format="%.10g")
+        written.append(plots.save(plots.law_comparison_figure(self.laws), directory / "law_comparison.png"))
+        written.append(plots.save(plots.stick_slip_map_figure(
+            self.map, title="eq 6 law (fig7_friction), 40 s from rest per point, limit cycle after 20 s",
+            point=(PAPER001_FIG7["reference_speed"], PAPER001_FIG7["normal_force"])),
+            directory / "stick_slip_map.png"))
+        return written
+
+
+def paper001(quick: bool = False) -> Paper001:
+    """Paper 001's part of the demo (writes nothing): the Fig. 7 scenario, the law comparison, the stick-slip map
+    (``quick``: a 4 x 3 grid instead of 10 x 5)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from .torsional import compare_laws, stick_slip_map
+
+    fig7 = run(builtin_scenario(PAPER001_SCENARIO))
+    laws = compare_laws()
+    speeds = QUICK_MAP_REFERENCE_SPEEDS if quick else MAP_REFERENCE_SPEEDS
+    forces = QUICK_MAP_NORMAL_FORCES if quick else MAP_NORMAL_FORCES
+    start = time.perf_counter()
+    with ThreadPoolExecutor(MAP_THREADS) as executor:
+        grid = stick_slip_map(speeds, forces, t_end=MAP_T_END, transient=MAP_TRANSIENT, executor=executor,
+                              errors="collect")
+    return Paper001(fig7, laws, grid, time.perf_counter() - start)
+
+
 @dataclass
 class Demo:
     """Everything the demo computed; :meth:`report` is what it prints, :meth:`write` what it writes."""
@@ -215,6 +340,7 @@ class Demo:
     reduction: "object"  #: pandas DataFrame (fig7_friction_reduction.csv)
     sweep: "object"  #: pandas DataFrame (friction_reduction.csv), reductions as fractions
     refit: "object"  #: pandas DataFrame (table5_refit.csv)
+    paper001: Paper001
     quick: bool
     elapsed: float  #: s of simulation and fitting
 
@@ -241,6 +367,8 @@ class Demo:
             "",
             "3. " + table5_report(self.refit),
             "",
+            *self.paper001.report(self.quick),
+            "",
             f"simulated and fitted in {self.elapsed:.2f} s",
         ]
         return "\n".join(lines)
@@ -266,6 +394,7 @@ class Demo:
                   "(paper 000 Fig. 7(a) rig)")
         written.append(plots.save(figure, directory / "friction_reduction.png"))
         written.append(write_fig11(directory))
+        written += self.paper001.write(directory / "paper001")
         return written
 
 
@@ -280,7 +409,8 @@ def write_fig11(directory: Union[str, Path]) -> Path:
 
 
 def compute(quick: bool = False) -> Demo:
-    """Run every simulation and fit of the demo; writes nothing. ``quick`` halves the sweep."""
+    """Run every simulation and fit of the demo; writes nothing. ``quick`` halves the sweep and shrinks the
+    stick-slip map."""
     import pandas as pd
 
     start = time.perf_counter()
@@ -288,4 +418,5 @@ def compute(quick: bool = False) -> Demo:
     reduction = pd.DataFrame([row for subdir, r in fig7.items() for row in _reduction_rows(subdir.split("_")[1], r)])
     sweep = _sweep(fig7["fig7_dry"], QUICK_SWEEP_RATIOS if quick else SWEEP_RATIOS)
     refit = table5_refit()
-    return Demo(fig7, reduction, sweep, refit, quick, time.perf_counter() - start)
+    torsional = paper001(quick)
+    return Demo(fig7, reduction, sweep, refit, torsional, quick, time.perf_counter() - start)

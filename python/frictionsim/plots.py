@@ -6,7 +6,9 @@ notebooks alike. :func:`save` writes a PNG and clears the figure.
 
 Time-series inputs are ``traces``: a sequence of ``(label, frame)`` where ``frame`` is a pandas DataFrame with the
 columns of :meth:`frictionsim.scenario.CaseRun.timeseries` (t [s], friction_force [N], relative_displacement [m],
-relative_velocity [m/s], drive_force [N]).
+relative_velocity [m/s], drive_force [N]), or for paper 001's torsional rig those of
+:meth:`frictionsim.scenario_torsional.TorsionalCaseRun.timeseries` (t [s], disc_speed and drive_speed [rad/s],
+disc_acceleration [rad/s^2], friction_torque [N m], shaft_twist [rad], ...).
 """
 
 from __future__ import annotations
@@ -16,8 +18,9 @@ from typing import Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-__all__ = ["drive_force_figure", "friction_force_figure", "hysteresis_figure", "power_law_figure",
-           "reduction_sweep_figure", "save"]
+__all__ = ["disc_speed_figure", "drive_force_figure", "friction_force_figure", "friction_torque_hysteresis_figure",
+           "hysteresis_figure", "law_comparison_figure", "phase_portrait_figure", "power_law_figure",
+           "reduction_sweep_figure", "save", "stick_slip_map_figure"]
 
 Window = Optional[Tuple[float, float]]
 
@@ -145,4 +148,185 @@ def reduction_sweep_figure(frame, columns: Sequence[Tuple[str, str]], *, title: 
     ax.set_title(title or "friction reduction vs velocity ratio", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
+    return figure
+
+
+# ------------------------------------------------------------------------------------- paper 001, torsional rig
+def disc_speed_figure(traces: Sequence, *, title: str = "", window: Window = None,
+                      reference_speeds: Optional[Sequence[float]] = None):
+    """Disc speed w2 and drive speed w3 [rad/s] against time [s], one panel per trace (paper 001 Figs. 4a, 7a);
+    ``reference_speeds``: w_ref [rad/s] per trace, drawn dotted."""
+    from matplotlib.figure import Figure
+
+    n = max(1, len(traces))
+    figure = Figure(figsize=(10.0, 1.2 + 2.1 * n), layout="constrained")
+    axes = np.atleast_1d(figure.subplots(n, 1, sharex=True, squeeze=False)[:, 0])
+    for i, (ax, (label, frame)) in enumerate(zip(axes, traces)):
+        part = _window(frame, window)
+        ax.plot(part["t"], part["disc_speed"], color="C0", linewidth=1.2, label="disc $\\omega_2$")
+        ax.plot(part["t"], part["drive_speed"], color="C3", linewidth=1.0, linestyle="--",
+                label="drive $\\omega_3$ (load side)")
+        if reference_speeds is not None and i < len(reference_speeds):
+            ax.axhline(reference_speeds[i], color="0.4", linewidth=0.8, linestyle=":",
+                       label=f"$\\omega_{{ref}}$ = {reference_speeds[i]:g} rad/s")
+        ax.axhline(0.0, color="0.6", linewidth=0.6)
+        low, high = ax.get_ylim()
+        ax.set_ylim(low, high + 0.3 * (high - low))  # room for the legend above the peaks
+        ax.set_ylabel("speed [rad/s]")
+        ax.set_title(label, fontsize=9, loc="left")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="upper right", ncol=3)
+    axes[-1].set_xlabel("time t [s]")
+    figure.suptitle(_titled(title, "disc and drive speed vs time (cf. paper 001 Figs. 4a, 7a)"), fontsize=10)
+    return figure
+
+
+def _broken_at_switches(part, *columns):
+    """The columns as arrays with a NaN between rows of different ``mode`` (if the frame has one), so that lines
+    do not join the two sides of a jump (stick <-> slip, eq 6's branch changes: acceleration and torque jump)."""
+    values = [part[c].to_numpy(dtype=float) for c in columns]
+    if "mode" not in part or len(part) < 2:
+        return values
+    cuts = np.flatnonzero(np.diff(part["mode"].to_numpy()) != 0) + 1
+    return [np.insert(v, cuts, np.nan) for v in values]
+
+
+def friction_torque_hysteresis_figure(traces: Sequence, *, title: str = "", window: Window = None):
+    """Friction torque T_f2 [N m] against disc speed w2 (paper 001 Fig. 5a) and against disc acceleration dw2/dt
+    (Fig. 5b), and dw2/dt against w2 (Fig. 5c), one line per trace; lines break where the contact mode changes
+    (the jumps of acceleration and torque at stick <-> slip and at eq 6's branch changes are not drawn)."""
+    figure, axes = _figure(3, width=15.0, height=4.8)
+    for label, frame in traces:
+        w, al, torque = _broken_at_switches(_window(frame, window), "disc_speed", "disc_acceleration",
+                                            "friction_torque")
+        line, = axes[0].plot(w, torque, linewidth=1.0, label=label)
+        axes[1].plot(al, torque, linewidth=1.0, color=line.get_color(), label=label)
+        axes[2].plot(w, al, linewidth=1.0, color=line.get_color(), label=label)
+    labels = [("disc speed $\\omega_2$ [rad/s]", "friction torque $T_{f2}$ [N m]", "(a) torque vs speed (Fig. 5a)"),
+              ("disc acceleration $\\dot\\omega_2$ [rad/s$^2$]", "friction torque $T_{f2}$ [N m]",
+               "(b) torque vs acceleration (Fig. 5b)"),
+              ("disc speed $\\omega_2$ [rad/s]", "disc acceleration $\\dot\\omega_2$ [rad/s$^2$]",
+               "(c) acceleration vs speed (Fig. 5c)")]
+    for ax, (xlabel, ylabel, panel) in zip(axes, labels):
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(panel, fontsize=9)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=8)
+    span = f", t = {window[0]:g}-{window[1]:g} s" if window is not None else ""
+    figure.suptitle(_titled(title, f"friction torque on the disc over the limit cycle{span} (cf. paper 001 Fig. 5)"),
+                    fontsize=10)
+    return figure
+
+
+def phase_portrait_figure(traces: Sequence, *, title: str = "", window: Window = None,
+                          equilibria: Optional[Sequence[Optional[Tuple[float, float]]]] = None,
+                          natural_frequency: Optional[float] = None):
+    """Phase portrait of the disc (paper 001 Fig. 7b): disc speed w2 [rad/s] against the shaft twist th3 - th2
+    [rad], one closed curve per trace in a limit cycle. ``equilibria``: per trace (twist, w_ref) of steady
+    rotation, marked x (None: no marker)."""
+    figure, ax = _figure(width=10.0, height=5.5)
+    for i, (label, frame) in enumerate(traces):
+        part = _window(frame, window)
+        line, = ax.plot(part["shaft_twist"], part["disc_speed"], linewidth=1.0, label=label)
+        if equilibria is not None and i < len(equilibria) and equilibria[i] is not None:
+            ax.plot(*equilibria[i], marker="x", markersize=9, markeredgewidth=2, color=line.get_color(),
+                    linestyle="none")
+    if equilibria is not None and any(e is not None for e in equilibria):
+        ax.plot([], [], marker="x", color="0.3", linestyle="none", label="steady rotation at $\\omega_{ref}$")
+    ax.axhline(0.0, color="0.6", linewidth=0.6)
+    ax.set_xlabel("shaft twist $\\theta_3 - \\theta_2$ [rad]")
+    ax.set_ylabel("disc speed $\\omega_2$ [rad/s]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    span = f", t = {window[0]:g}-{window[1]:g} s" if window is not None else ""
+    note = f"; $f_n$ = {natural_frequency:.3f} Hz" if natural_frequency else ""
+    ax.set_title(_titled(title, f"phase portrait of the disc{span} (cf. paper 001 Fig. 7b){note}"), fontsize=10)
+    return figure
+
+
+def _edges(values: np.ndarray) -> np.ndarray:
+    """Cell edges around grid values (midpoints inside, half a spacing beyond the ends)."""
+    values = np.asarray(values, dtype=float)
+    if values.size == 1:
+        return np.array([values[0] * 0.9, values[0] * 1.1])
+    mid = 0.5 * (values[1:] + values[:-1])
+    return np.concatenate([[values[0] - (mid[0] - values[0])], mid, [values[-1] + (values[-1] - mid[-1])]])
+
+
+def stick_slip_map_figure(stick_slip_map, *, title: str = "", point: Optional[Tuple[float, float]] = (5.76, 35.0)):
+    """Where the torsional rig stick-slips over (w_ref [rad/s], N2 [N]) (a
+    :class:`frictionsim.torsional.StickSlipMap`): cells coloured by peak disc speed / w_ref (left) and by the
+    oscillation frequency [Hz] (right); stick-slip cells (the disc sticks in the limit cycle) carry a black dot,
+    ``point`` (paper 001's Fig. 7 operating point) a star."""
+    m = stick_slip_map
+    speeds, forces = np.asarray(m.reference_speeds, float), np.asarray(m.normal_forces, float)
+    x_edges, y_edges = _edges(speeds), _edges(forces)
+    stick = np.asarray(m.stick_slip, dtype=bool)
+    figure, axes = _figure(2, width=13.0, height=5.2)
+    panels = [(np.asarray(m.peak_ratio, float), "peak disc speed / $\\omega_{ref}$ [-]", "viridis", ".2f"),
+              (np.where(np.asarray(m.frequency, float) > 0, m.frequency, np.nan), "oscillation frequency [Hz]",
+               "cividis", ".2f")]
+    xx, yy = np.meshgrid(speeds, forces, indexing="ij")
+    for ax, (values, label, cmap, fmt) in zip(axes, panels):
+        mesh = ax.pcolormesh(x_edges, y_edges, values.T, cmap=cmap, shading="flat")
+        figure.colorbar(mesh, ax=ax, label=label)
+        for (i, j), value in np.ndenumerate(values):
+            if np.isfinite(value) and values.size <= 120:
+                ax.annotate(format(value, fmt), (speeds[i], forces[j]), textcoords="offset points", xytext=(0, -11),
+                            ha="center", fontsize=6.5, color="w" if value < np.nanmean(values) else "k")
+        ax.plot(xx[stick], yy[stick], "o", color="k", markersize=4, linestyle="none", label="stick-slip")
+        ax.plot(xx[~stick], yy[~stick], "o", markerfacecolor="none", markeredgecolor="0.85", markersize=4,
+                linestyle="none", label="no sticking")
+        if point is not None:
+            ax.plot(*point, marker="*", markersize=15, color="r", markeredgecolor="k", linestyle="none",
+                    label=f"Fig. 7: {point[0]:g} rad/s, {point[1]:g} N")
+        ax.set_xlabel("reference speed $\\omega_{ref}$ [rad/s]")
+        ax.set_ylabel("normal force $N_2$ [N]")
+        ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    share = f"{stick.sum()} of {stick.size} points stick-slip"
+    figure.suptitle(_titled(title, f"stick-slip map of the torsional rig (paper 001): {share}"), fontsize=10)
+    return figure
+
+
+def law_comparison_figure(frame, *, title: str = "", paper: Optional[dict] = None,
+                          natural_frequency: Optional[float] = None):
+    """Limit cycle per friction law (the DataFrame of :func:`frictionsim.torsional.compare_laws`: law, frequency
+    [Hz], peak [rad/s], stick_slip): bars of the stick-slip frequency and the peak disc speed beside paper 001's
+    Fig. 7 values (``paper``: :data:`frictionsim.torsional.FIG7`) and the natural frequency f_n [Hz]."""
+    if paper is None:
+        from .torsional import FIG7 as paper
+    if natural_frequency is None and "natural_frequency" in frame:
+        natural_frequency = float(frame["natural_frequency"].iloc[0])
+    figure, (left, right) = _figure(2, width=12.0, height=4.8)
+    laws = list(frame["law"])
+    y = np.arange(len(laws))
+    sticks = frame["stick_slip"].astype(bool).to_numpy() if "stick_slip" in frame else np.ones(len(laws), bool)
+    colors = ["C0" if s else "0.7" for s in sticks]
+    for ax, column, unit, lines in (
+            (left, "frequency", "Hz", [(paper["frequency_measured"], "measured", "k", "-"),
+                                       (paper["frequency_simulated"], "paper's model", "k", "--")]
+             + ([(round(natural_frequency, 3), "$f_n = \\sqrt{k_2/J_2}/2\\pi$", "C3", ":")] if natural_frequency
+                else [])),
+            (right, "peak", "rad/s", [(paper["peak_measured"], "measured", "k", "-"),
+                                      (paper["peak_simulated"], "paper's model", "k", "--"),
+                                      (paper["reference_speed"], "$\\omega_{ref}$", "C3", ":")])):
+        values = frame[column].to_numpy(dtype=float)
+        ax.barh(y, values, color=colors)
+        for yi, value, stick in zip(y, values, sticks):
+            ax.annotate(f"{value:.3g}" + ("" if stick else " (no stick-slip)"), (value, yi), xytext=(3, 0),
+                        textcoords="offset points", va="center", fontsize=8,
+                        bbox=dict(facecolor="white", edgecolor="none", alpha=0.8, pad=1))
+        for value, label, color, style in lines:
+            ax.axvline(value, color=color, linestyle=style, linewidth=1.2, label=f"{label}: {value:g} {unit}")
+        ax.set_yticks(y, laws)
+        ax.invert_yaxis()
+        ax.set_xlim(0, 1.25 * max(np.nanmax(values), max(v for v, *_ in lines)))
+        ax.grid(True, axis="x", alpha=0.3)
+        ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    left.set_xlabel("stick-slip frequency [Hz]")
+    right.set_xlabel("peak disc speed [rad/s]")
+    figure.suptitle(_titled(title, f"friction laws at paper 001's Fig. 7 point (w_ref = {paper['reference_speed']:g}"
+                                   f" rad/s, N2 = {paper['normal_force']:g} N) against the paper's values"),
+                    fontsize=10)
     return figure

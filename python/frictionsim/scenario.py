@@ -6,7 +6,7 @@ Coulomb and Dahl friction side by side. SI units throughout::
 
     title = "Paper 000 Fig. 7(a)"
     [rig]                       # default rig of every case
-    type = "axial"              # "axial" (AxialVibrationRig) or "kinematic" (KinematicRig)
+    type = "axial"              # "axial" (AxialVibrationRig), "kinematic" (KinematicRig), "torsional" (TorsionalRig)
     amplitude = 5e-3            # u0 [m]; omitted keys take the engine's defaults
     [solver]
     t_end = 2.0                 # s
@@ -29,11 +29,23 @@ key by key, unless the case changes ``type``, in which case the default table is
     ``type = "kinematic"``: normal_force [N] and either a harmonic relative velocity v_r = v_d - v_a cos(2 pi f t)
     (sliding_velocity [m/s], velocity_amplitude [m/s], frequency [Hz]) or ``velocity_file``, a CSV of two
     columns t [s], v_r [m/s] (header row optional, ``#`` comments; relative to the scenario file).
+    ``type = "torsional"``: paper 001's drill-string rig (:class:`frictionsim.TorsionalRig`; defaults: Tables 1-2
+    at the Fig. 7 operating point): disc_inertia J2 [kg m^2], shaft_stiffness k2 [N m/rad], shaft_damping d2
+    [N m s/rad], motor_inertia J_m [kg m^2], gear_ratio eta, inductance L [H], resistance R [Ohm],
+    torque_constant K_T [N m/A], back_emf_constant K_E [V s/rad], motor_friction_torque T_f [N m],
+    motor_viscous_coefficient C_m [N m s/rad], proportional_gain k_p [V s/rad], integral_gain k_i [V/rad],
+    reference_speed w_ref [rad/s], normal_force N2 [N], contact_radius r [m], initial_disc_speed [rad/s],
+    initial_drive_speed [rad/s]; all optional. A file's cases are either all torsional or none.
 ``friction``
     ``type`` = "coulomb" | "stribeck" | "dahl" | "lugre" and the constructor's parameters by name
     (:class:`frictionsim.Coulomb` ...): mu, mu_static, stribeck_velocity [m/s], shape_exponent,
     viscous_coefficient [N s/m], karnopp_band [m/s], tangential_stiffness [N/m], exponent, bristle_stiffness [N/m],
-    bristle_damping [N s/m], viscous_damping [N s/m].
+    bristle_damping [N s/m], viscous_damping [N s/m]. On a torsional rig they act at contact_radius (v_r = r w2).
+    Torsional rigs only: ``type = "hysteretic"``, paper 001's eq 6 (:class:`frictionsim.HystereticFriction`):
+    stick_slope a [N m s/rad], accelerating = [p00, p10, p01, p20, p11, p02] and decelerating = [n00, ..., n02]
+    (6 numbers each: N m, N m s/rad, kg m^2, N m s^2/rad^2, N m s^3/rad^2, N m s^4/rad^2), optional stick_speed
+    w_s [rad/s], reference_normal_force [N], branch_gap ("hold" or "error"); ``type = "fig7"``: the eq 6 set
+    chosen to reproduce paper 001's Fig. 7 (:func:`frictionsim.torsional.fig7_friction`; optional branch_gap).
 ``solver``
     t_end [s] (required), method (one of :data:`frictionsim.METHODS`), rtol, atol, and output_points (default
     2001, evenly spaced over [0, t_end]) or output_step [s]. The ends of the averaging window are always
@@ -42,13 +54,21 @@ key by key, unless the case changes ``type``, in which case the default table is
     transient [s], cycles, period [s] (default: the rig's vibration period 1/f; required for a velocity_file).
     The mean friction force F_df is taken over ``cycles`` whole cycles after ``transient``; without transient it
     is over the last ``cycles`` cycles before t_end; without either, over all whole cycles after t_end / 2.
+    Torsional rigs: the limit cycle of the disc speed instead (:func:`frictionsim.torsional.limit_cycle`):
+    transient [s] (default t_end / 2; must be < t_end) and stick_speed [rad/s] (default 0.01: |w2| at or below
+    it counts as stuck). Summary: frequency [Hz], period [s], peak / trough / mean disc speed [rad/s], peak / w_ref,
+    stick fraction, mean friction torque [N m] over the whole cycles measured (see
+    :mod:`frictionsim.scenario_torsional`).
 ``output`` (top level only)
     directory (relative to the working directory; default ``out/<file stem>``), tables (subset of
-    ["timeseries", "summary"]), plots (subset of ["friction_force", "hysteresis", "drive_force"]),
-    plot_window = [t_start, t_end] [s] (default: the last 3 vibration cycles).
+    ["timeseries", "summary"]), plots (subset of ["friction_force", "hysteresis", "drive_force"]; torsional
+    rigs: of ["disc_speed", "friction_torque_hysteresis", "phase_portrait"]), plot_window = [t_start, t_end] [s]
+    (default: the last 3 vibration cycles; torsional: the last 10 s for disc_speed, [transient, t_end] for the
+    others). The time series of a torsional case has t, the rig's states (disc_speed, drive_speed, shaft_twist,
+    current, ...), disc_acceleration, friction_torque, shaft_torque, voltage and mode.
 
 A case also takes ``name`` (file-name safe; default the friction type), ``description`` and ``lubricant``
-("dry", "water", "wbm", "obm", "sbm": adds the Table 5 power-law F_df to the summary).
+("dry", "water", "wbm", "obm", "sbm": adds the Table 5 power-law F_df to the summary; not for torsional rigs).
 
 Everything is validated by :func:`load` before anything runs: the law and rig objects are built (so the engine's
 own rules reject non-physical values), and the averaging window is checked against t_end. Any problem raises
@@ -70,6 +90,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _core
+from . import scenario_torsional as _torsional
 from .errors import InvalidParameterError
 from .simulation import METHODS, simulate
 
@@ -91,7 +112,9 @@ FRICTION_TYPES: Dict[str, Tuple[str, Tuple[str, ...], Tuple[str, ...]]] = {
     "dahl": ("Dahl", ("mu", "tangential_stiffness"), ("exponent",)),
     "lugre": ("LuGre", ("mu", "mu_static", "stribeck_velocity", "bristle_stiffness", "bristle_damping"),
               ("viscous_damping",)),
+    **_torsional.FRICTION_TYPES,  # "hysteretic", "fig7": torsional rigs only
 }
+RIG_TYPES = ("axial", "kinematic", "torsional")
 _AXIAL_KEYS = {"mass": float, "drive_stiffness": float, "sliding_velocity": float, "amplitude": float,
                "frequency": float, "normal_force": float, "gravity": bool, "gravitational_acceleration": float,
                "initial_position": float, "initial_velocity": float}
@@ -109,6 +132,7 @@ _CASE_KEYS = ("name", "description", "lubricant", "rig", "friction", "solver", "
 _TOP_KEYS = ("title", "description", "rig", "friction", "solver", "analysis", "output", "case")
 TABLES = ("timeseries", "summary")
 PLOTS = ("friction_force", "hysteresis", "drive_force")
+TORSIONAL_PLOTS = _torsional.PLOTS
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]*$")
 _RESERVED_NAMES = {"summary", "scenario"}
 
@@ -126,10 +150,11 @@ class ScenarioError(ValueError):
 # ----------------------------------------------------------------------------------------------------------- specs
 @dataclass(frozen=True)
 class FrictionSpec:
-    """A friction law: ``type`` and the constructor's keyword arguments (SI units)."""
+    """A friction law: ``type`` and the constructor's keyword arguments (SI units; numbers, and for "hysteretic"
+    two tuples of 6 numbers and the branch_gap string)."""
 
     type: str
-    params: Dict[str, float]
+    params: Dict[str, Any]
 
     @property
     def label(self) -> str:
@@ -138,17 +163,20 @@ class FrictionSpec:
 
     @property
     def mu(self) -> float:
-        """The (kinetic) friction coefficient mu [-]."""
-        return float(self.params["mu"])
+        """The (kinetic) friction coefficient mu [-] (NaN for the torque laws "hysteretic" and "fig7")."""
+        return float(self.params["mu"]) if "mu" in self.params else math.nan
 
     def build(self):
         """The law object, e.g. ``frictionsim.Dahl(mu=0.41, tangential_stiffness=4e4)``."""
+        if self.type in _torsional.TORSIONAL_ONLY:
+            return _torsional.build_friction(self.type, self.params)
         return getattr(_core, self.label)(**self.params)
 
 
 @dataclass(frozen=True)
 class RigSpec:
-    """A rig: ``type`` ("axial" | "kinematic") and its parameters in SI units (only the keys given)."""
+    """A rig: ``type`` ("axial" | "kinematic" | "torsional") and its parameters in SI units (only the keys
+    given)."""
 
     type: str
     params: Dict[str, Any]
@@ -161,12 +189,15 @@ class RigSpec:
 
     @property
     def harmonic(self) -> bool:
-        return self.type == "axial" or "velocity_file" not in self.params
+        """Whether the rig vibrates harmonically (axial, or kinematic without a velocity_file)."""
+        return self.type == "axial" or (self.type == "kinematic" and "velocity_file" not in self.params)
 
     def build(self, friction):
         """The rig object with the given law object."""
         if self.type == "axial":
             return _core.AxialVibrationRig(friction=friction, **self.params)
+        if self.type == "torsional":
+            return _core.TorsionalRig(friction, **self.params)
         if self.samples is not None:
             return _core.KinematicRig(friction, relative_velocity=self.samples,
                                       normal_force=float(self.params["normal_force"]))
@@ -194,11 +225,13 @@ class SolverSpec:
 
 @dataclass(frozen=True)
 class AnalysisSpec:
-    """Averaging window: transient [s], cycles, period [s] (None: see the module docstring)."""
+    """Averaging window: transient [s], cycles, period [s]; torsional rigs: transient [s] and stick_speed
+    [rad/s] of the limit cycle (None: see the module docstring)."""
 
     transient: Optional[float] = None
     cycles: Optional[int] = None
     period: Optional[float] = None
+    stick_speed: Optional[float] = None
 
 
 @dataclass(frozen=True)
@@ -228,6 +261,11 @@ class Case:
         return self.rig.build(self.friction.build())
 
     @property
+    def torsional(self) -> bool:
+        """A torsional rig: analysed by its limit cycle (:mod:`frictionsim.scenario_torsional`)."""
+        return self.rig.type == "torsional"
+
+    @property
     def period(self) -> Optional[float]:
         """Averaging period [s]: analysis.period, else the rig's vibration period 1/f."""
         if self.analysis.period is not None:
@@ -237,7 +275,10 @@ class Case:
         return None
 
     def window(self) -> Tuple[float, float, int]:
-        """(t_a, t_b, cycles): the whole cycles [s] the mean friction is taken over."""
+        """(t_a, t_b, cycles): the whole cycles [s] the mean friction is taken over (not for torsional rigs,
+        whose cycles are found in the result: :class:`frictionsim.scenario_torsional.TorsionalCaseRun`)."""
+        if self.torsional:
+            raise ValueError("a torsional case has no vibration period: its limit cycle is measured after the run")
         period, t_end, a = self.period, self.solver.t_end, self.analysis
         transient = a.transient
         if transient is None:
@@ -245,7 +286,10 @@ class Case:
         return tuple(_core.whole_cycle_window(0.0, t_end, period, transient, int(a.cycles or 0)))
 
     def output_times(self) -> np.ndarray:
-        """The solver grid plus the window ends [s], so the cycle mean needs no interpolation."""
+        """The solver grid plus the window ends [s], so the cycle mean needs no interpolation (torsional: the
+        grid)."""
+        if self.torsional:
+            return self.solver.grid()
         t_a, t_b, _ = self.window()
         return np.union1d(self.solver.grid(), [t_a, t_b])
 
@@ -299,6 +343,7 @@ def parse(data: Mapping[str, Any], *, source: Optional[Union[str, Path]] = None,
 class _Parser:
     def __init__(self, source: Optional[Union[str, Path]]) -> None:
         self.source = Path(source) if source is not None else None
+        self.rig_types: List[str] = []  # per case parsed so far
 
     def error(self, key: Optional[str], rule: str) -> ScenarioError:
         return ScenarioError(self.source, key, rule)
@@ -400,6 +445,14 @@ class _Parser:
             raise self.engine(error, friction_paths, _join(prefix, "friction")) from None
 
         rig, rig_paths = self.rig(*self.section(data, own, prefix, "rig"))
+        self.rig_types.append(rig.type)
+        if (rig.type == "torsional") != (self.rig_types[0] == "torsional"):
+            raise self.error(rig_paths["_type"], f"a file's cases must be all torsional or all axial / kinematic "
+                                                 f"(case[1] is {self.rig_types[0]}, got {rig.type!r}): their "
+                                                 f"analyses and outputs differ")
+        if friction.type in _torsional.TORSIONAL_ONLY and rig.type != "torsional":
+            raise self.error(friction_paths["friction"], f"a {friction.type} law (paper 001 eq 6) runs only on a "
+                                                         f"torsional rig (got a {rig.type} rig)")
         try:
             rig.build(law)
         except InvalidParameterError as error:
@@ -409,7 +462,7 @@ class _Parser:
         if rig.samples is not None and solver[0].t_end > rig.samples[0][-1]:
             raise self.error(solver[1]["t_end"], f"must be <= the last time of {rig.params['velocity_file']} "
                                                  f"({rig.samples[0][-1]:g} s) (got {solver[0].t_end:g})")
-        analysis, analysis_paths = self.analysis(*self.section(data, own, prefix, "analysis"))
+        analysis, analysis_paths = self.analysis(*self.section(data, own, prefix, "analysis"), rig.type)
 
         if "name" in own:
             name = self.value(own["name"], str, _join(prefix, "name"))
@@ -420,6 +473,9 @@ class _Parser:
                                                     f"{' or '.join(sorted(_RESERVED_NAMES))}) (got {name!r})")
         lubricant = own.get("lubricant")
         if lubricant is not None:
+            if rig.type == "torsional":
+                raise self.error(_join(prefix, "lubricant"), "only for axial and kinematic rigs (paper 000's Table 5 "
+                                                             "power law), not for a torsional rig")
             lubricant = self.value(lubricant, str, _join(prefix, "lubricant")).lower()
             try:
                 _core.PowerLawCoefficient.from_table5(lubricant)
@@ -427,7 +483,10 @@ class _Parser:
                 raise self.engine(error, {}, _join(prefix, "lubricant")) from None
         case = Case(name, rig, friction, solver[0], analysis, lubricant,
                     self.value(own.get("description", ""), str, _join(prefix, "description")))
-        self.check_window(case, {**analysis_paths, "t_end": solver[1]["t_end"]}, analysis_paths["_section"])
+        if case.torsional:
+            self.check_transient(case, analysis_paths)
+        else:
+            self.check_window(case, {**analysis_paths, "t_end": solver[1]["t_end"]}, analysis_paths["_section"])
         return case
 
     def friction(self, merged, path: str) -> Tuple[FrictionSpec, Dict[str, str]]:
@@ -442,19 +501,27 @@ class _Parser:
             if key not in required + optional:
                 raise self.error(key_path, f"unknown key for a {kind} law (allowed: type, "
                                            f"{', '.join(required + optional)})")
-            params[key], paths[key] = self.value(value, float, key_path), key_path
+            value_kind = _torsional.VALUE_KINDS.get(key, float) if kind in _torsional.TORSIONAL_ONLY else float
+            if value_kind == "coefficients":
+                params[key] = self.coefficients(value, key_path)
+            else:
+                params[key] = self.value(value, value_kind, key_path)
+            paths[key] = key_path
         for key in required:
             if key not in params:
                 raise self.error(_join(path, key), f"missing required value for a {kind} law")
+        for coefficient, key in _torsional.COEFFICIENT_KEYS.items():  # the engine names eq 6's p00 ... n02
+            if key in paths:
+                paths[coefficient] = paths[key]
         paths["friction"] = type_path
         return FrictionSpec(kind, params), paths
 
     def rig(self, merged, path: str) -> Tuple[RigSpec, Dict[str, str]]:
         if merged is None:
             raise self.error(path, "missing required table (give a [rig] default or one per case)")
-        kind, _ = self.type_of(merged, path, ("axial", "kinematic"))
-        keys = _AXIAL_KEYS if kind == "axial" else _KINEMATIC_KEYS
-        params, paths = {}, {}
+        kind, type_path = self.type_of(merged, path, RIG_TYPES)
+        keys = {"axial": _AXIAL_KEYS, "kinematic": _KINEMATIC_KEYS, "torsional": _torsional.RIG_KEYS}[kind]
+        params, paths = {}, {"_type": type_path}
         for key, (value, key_path) in merged.items():
             if key == "type":
                 continue
@@ -547,18 +614,37 @@ class _Parser:
                                  f"(t_end / output_step = {values['t_end'] / values['output_step']:.3g})")
         return SolverSpec(**values), paths
 
-    def analysis(self, merged, path: str) -> Tuple[AnalysisSpec, Dict[str, str]]:
+    def analysis(self, merged, path: str, rig_type: str) -> Tuple[AnalysisSpec, Dict[str, str]]:
         values, paths = {}, {}
+        torsional = rig_type == "torsional"
+        keys = _torsional.ANALYSIS_KEYS if torsional else _ANALYSIS_KEYS
         for key, (value, key_path) in (merged or {}).items():
-            if key not in _ANALYSIS_KEYS:
-                raise self.error(key_path, f"unknown key (allowed: {', '.join(_ANALYSIS_KEYS)})")
-            values[key], paths[key] = self.value(value, _ANALYSIS_KEYS[key], key_path), key_path
+            if key not in keys:
+                what = " for a torsional rig (its limit cycle)" if torsional else ""
+                raise self.error(key_path, f"unknown key{what} (allowed: {', '.join(keys)})")
+            values[key], paths[key] = self.value(value, keys[key], key_path), key_path
+        if "stick_speed" in values:
+            self.positive(values["stick_speed"], paths["stick_speed"])
         if "period" in values:
             self.positive(values["period"], paths["period"])
         if "cycles" in values and values["cycles"] < 1:
             raise self.error(paths["cycles"], f"must be at least 1 (got {values['cycles']})")
         paths.setdefault("_section", path)
         return AnalysisSpec(**values), paths
+
+    def check_transient(self, case: Case, paths: Mapping[str, str]) -> None:
+        """A torsional case's limit cycle is measured over [transient, t_end]."""
+        transient, t_end = case.analysis.transient, case.solver.t_end
+        if transient is not None and not (math.isfinite(transient) and 0.0 <= transient < t_end):
+            raise self.error(paths["transient"], f"must be >= 0 and < t_end = {t_end:g} s (got {transient:g})")
+
+    def coefficients(self, value: Any, path: str) -> Tuple[float, ...]:
+        """An array of eq 6's 6 coefficients."""
+        values = self.value(value, list, path)
+        if len(values) != 6:
+            raise self.error(path, f"must be an array of 6 numbers {_torsional.COEFFICIENT_NAMES} (got "
+                                   f"{len(values)} values)")
+        return tuple(self.value(x, float, f"{path}[{i + 1}]") for i, x in enumerate(values))
 
     def check_window(self, case: Case, paths: Mapping[str, str], fallback: str) -> None:
         if case.period is None:
@@ -582,15 +668,19 @@ class _Parser:
         for key, kind in _OUTPUT_KEYS.items():
             if key in raw:
                 values[key] = self.value(raw[key], kind, f"output.{key}")
-        for key, allowed in (("tables", TABLES), ("plots", PLOTS)):
+        torsional = cases[0].torsional
+        for key, allowed in (("tables", TABLES), ("plots", TORSIONAL_PLOTS if torsional else PLOTS)):
             if key in values:
+                what = " for torsional rigs" if torsional and key == "plots" else ""
                 for i, item in enumerate(values[key]):
                     if item not in allowed:
-                        raise self.error(f"output.{key}[{i + 1}]", f"must be one of {', '.join(allowed)} "
+                        raise self.error(f"output.{key}[{i + 1}]", f"must be one of {', '.join(allowed)}{what} "
                                                                    f"(got {item!r})")
                 values[key] = tuple(dict.fromkeys(values[key]))
         has_axial = any(case.rig.type == "axial" for case in cases)
-        if "plots" not in values:
+        if torsional:
+            values.setdefault("plots", TORSIONAL_PLOTS)
+        elif "plots" not in values:
             values["plots"] = tuple(p for p in PLOTS if p != "drive_force" or has_axial)
         elif "drive_force" in values["plots"] and not has_axial:
             raise self.error("output.plots", "drive_force needs at least one case with an axial rig")
@@ -720,11 +810,14 @@ class CaseRun:
         }
 
 
-def run_case(case: Case) -> CaseRun:
-    """Simulate one case and take its mean friction over the analysis window.
+def run_case(case: Case) -> Union[CaseRun, "_torsional.TorsionalCaseRun"]:
+    """Simulate one case and take its mean friction over the analysis window (torsional rigs: measure its limit
+    cycle, :class:`frictionsim.scenario_torsional.TorsionalCaseRun`).
 
     Raises :class:`frictionsim.SimulationError` (``time_reached``) when the integration stops early.
     """
+    if case.torsional:
+        return _torsional.run_case(case)
     rig = case.build()
     t_a, t_b, cycles = case.window()
     start = time.perf_counter()
@@ -740,7 +833,12 @@ class ScenarioRun:
     """All cases of a scenario, simulated."""
 
     scenario: Scenario
-    runs: List[CaseRun]
+    runs: List[Any]  #: CaseRun, or scenario_torsional.TorsionalCaseRun for torsional rigs
+
+    @property
+    def torsional(self) -> bool:
+        """Torsional rigs (a file's cases are all torsional or none)."""
+        return bool(self.runs) and self.runs[0].case.torsional
 
     def summary(self):
         """pandas DataFrame, one :meth:`CaseRun.summary` row per case."""
@@ -749,8 +847,9 @@ class ScenarioRun:
         return pd.DataFrame([run.summary() for run in self.runs])
 
     def plot_window(self) -> Optional[Tuple[float, float]]:
-        """output.plot_window, else the last 3 vibration cycles of the first case [s]."""
-        if self.scenario.output.plot_window is not None:
+        """output.plot_window, else the last 3 vibration cycles of the first case [s] (torsional: None, each
+        plot has its own default window)."""
+        if self.scenario.output.plot_window is not None or self.torsional:
             return self.scenario.output.plot_window
         first = self.runs[0]
         t_end = first.case.solver.t_end
@@ -766,7 +865,7 @@ class ScenarioRun:
         if "timeseries" in output.tables:
             for name, _, frame in frames:
                 written.append(directory / f"{name}.csv")
-                frame.to_csv(written[-1], index=False, float_format="%.10g")
+                _write_csv(frame, written[-1])
         if "summary" in output.tables:
             written.append(directory / "summary.csv")
             self.summary().to_csv(written[-1], index=False, float_format="%.10g")
@@ -777,12 +876,28 @@ class ScenarioRun:
         title = self.scenario.title or self.scenario.name
         traces = [(f"{name} ({label})" if name.lower() != label.lower() else label, frame)
                   for name, label, frame in frames]
+        if self.torsional:
+            return written + _torsional.write_plots(self.runs, traces, output.plots, directory, title=title,
+                                                    plot_window=output.plot_window)
         makers = {"friction_force": plots.friction_force_figure, "hysteresis": plots.hysteresis_figure,
                   "drive_force": plots.drive_force_figure}
         for plot in output.plots:
             figure = makers[plot](traces, title=title, window=self.plot_window())
             written.append(plots.save(figure, directory / f"{plot}.png"))
         return written
+
+
+def _write_csv(frame, path: Path) -> None:
+    """``frame.to_csv(path, index=False, float_format="%.10g")``, the same text, through numpy's C-level loop
+    for purely numeric frames without NaN (3x faster: a torsional run writes 40001 rows of 17 columns)."""
+    kinds = [frame[c].dtype.kind for c in frame.columns]
+    values = frame.to_numpy(dtype=float) if all(k in "fiu" for k in kinds) else None
+    if values is None or np.isnan(values).any():
+        frame.to_csv(path, index=False, float_format="%.10g")
+        return
+    fmt = ",".join("%.10g" if k == "f" else "%d" for k in kinds)
+    np.savetxt(path, values, fmt=fmt, delimiter=",", header=",".join(map(str, frame.columns)), comments="",
+               encoding="utf-8")
 
 
 def run(scenario: Scenario) -> ScenarioRun:

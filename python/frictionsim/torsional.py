@@ -8,7 +8,7 @@ w_ref = 5.76 rad/s, N2 = 35 N reproduces Fig. 7: fully developed stick-slip, dis
 0.835 Hz and a peak disc speed of 13.8 rad/s. The laws of speed alone got the same treatment on their static
 coefficient (peak 13.8 rad/s where they can reach it). They show the physics the paper's model relies on: with
 friction a function of speed alone, the stick-slip frequency stays below the disc-on-shaft natural frequency
-sqrt(k2/J2)/2 pi = 0.789 Hz; the negative acceleration coefficient of eq 6 (p01 = -0.00277 kg m^2, 19 % of J2)
+sqrt(k2/J2)/2 pi = 0.789 Hz; the negative acceleration coefficient of eq 6 (p01 = -0.00315 kg m^2, 21 % of J2)
 lowers the disc's effective inertia during slip, which is how the paper's model reaches 0.84 Hz.
 
     >>> import frictionsim as fs
@@ -37,8 +37,8 @@ FIG7 = {"reference_speed": 5.76, "normal_force": 35.0, "frequency_measured": 0.8
 def fig7_friction(branch_gap: str = "hold") -> "_core.HystereticFriction":
     """The eq 6 friction law chosen to reproduce paper 001's Fig. 7 (C++ ``paper001_fig7_friction``):
 
-    p = (0.95, -0.02, -0.00277, 0.0005, 0, 2e-5), n = (0.98, -0.02, -0.00277, 0.0005, 0, 2e-5) in SI units,
-    stick slope 1384 N m s/rad with w_s = 1e-3 rad/s (break-away 1.384 N m), at N_ref = 35 N. A Stribeck-like
+    p = (0.95, -0.02, -0.00315, 0.0005, 0, 2e-5), n = (0.98, -0.02, -0.00315, 0.0005, 0, 0) in SI units,
+    stick slope 1378 N m s/rad with w_s = 1e-3 rad/s (break-away 1.378 N m), at N_ref = 35 N. A Stribeck-like
     level falling with speed (p10 < 0: steady rotation at 5.76 rad/s is unstable), the decelerating branch 0.03 N m
     above the accelerating one (Fig. 5a's loop; both branches consistent at dw/dt = 0, so no gap rule is needed
     here), and the tuned acceleration coefficient.
@@ -100,21 +100,23 @@ class LimitCycle:
 
 
 def limit_cycle(result, transient: float = 0.0, *, speed: str = "disc_speed", level: Optional[float] = None,
-                stick_speed: float = 1e-2, hysteresis: float = 0.05) -> LimitCycle:
+                stick_speed: float = 1e-2, hysteresis: float = 0.05, min_amplitude: float = 1e-2) -> LimitCycle:
     """Limit cycle of ``result[speed]`` after ``transient`` seconds (C++ ``analysis/limit_cycle.hpp``).
 
     ``result`` is a :class:`frictionsim.Result` or a pair ``(t, w)`` of arrays (e.g. measured data). Cycles are
     delimited by upward crossings of ``level`` (default: the mean speed), re-armed only after the signal fell
     ``hysteresis`` x (peak - trough) below it, so noise does not split cycles. ``stick_speed`` [rad/s]: |w| at or
     below it counts as stuck (default 0.01 rad/s, 0.2 % of the paper's 5.76 rad/s: above the creep of eq 6's
-    stick band and of LuGre's presliding, far below slip speeds).
+    stick band and of LuGre's presliding, far below slip speeds). A speed whose peak-to-trough range stays
+    below ``min_amplitude`` [rad/s] (default 0.01) is steady rotation: cycles == 0, frequency 0.
     """
     if isinstance(result, tuple):
         t, w = result
     else:
         t, w = result.t, result[speed]
     values = _core.limit_cycle(np.asarray(t, dtype=float), np.asarray(w, dtype=float), float(transient),
-                               None if level is None else float(level), float(stick_speed), float(hysteresis))
+                               None if level is None else float(level), float(stick_speed), float(hysteresis),
+                               float(min_amplitude))
     return LimitCycle(**values)
 
 
@@ -178,10 +180,12 @@ class StickSlipMap:
 
 def stick_slip_map(reference_speeds: Sequence[float], normal_forces: Sequence[float], *, friction=None,
                    t_end: float = 40.0, transient: float = 20.0, executor: Any = None, progress: bool = False,
-                   **rig_params: Any) -> StickSlipMap:
+                   errors: str = "raise", **rig_params: Any) -> StickSlipMap:
     """Where does the rig stick-slip? One simulation per (w_ref, N2) point through :func:`frictionsim.sweep`
     (any ``executor``: threads run in parallel, the engine releases the GIL). The question drilling engineers
-    ask of such a rig: above which rotary speed, at a given weight (normal force), does the bit stop sticking."""
+    ask of such a rig: above which rotary speed, at a given weight (normal force), does the bit stop sticking.
+    ``errors="collect"`` keeps going past a point whose run fails (e.g. a friction law with no consistent branch
+    there): its entries are NaN and ``.sweep.failed`` lists it."""
     from .sweeps import sweep
 
     speeds = np.asarray(reference_speeds, dtype=float).ravel()
@@ -191,6 +195,6 @@ def stick_slip_map(reference_speeds: Sequence[float], normal_forces: Sequence[fl
             raise ValueError(f"{name} must be a non-empty sequence of positive finite values (got {values!r})")
     fixed = dict(friction=friction, t_end=t_end, transient=transient, **rig_params)
     result = sweep(stick_slip_point, {"reference_speed": list(speeds), "normal_force": list(forces)}, fixed=fixed,
-                   executor=executor, progress=progress)
+                   executor=executor, progress=progress, errors=errors)
     return StickSlipMap(speeds, forces, result.as_array("stick_slip") > 0.5, result.as_array("frequency"),
                         result.as_array("peak_ratio"), result.as_array("stick_fraction"), result)

@@ -172,7 +172,8 @@ BAD = [
      "case[1].friction.mu_static", "must be >="),
     ("unknown law type", DRY.replace('type = "dahl"', 'type = "dhal"'), "case[2].friction.type",
      "must be one of coulomb, stribeck, dahl, lugre"),
-    ("unknown rig type", DRY.replace('type = "axial"', 'type = "torsional"'), "rig.type", "must be one of"),
+    ("unknown rig type", DRY.replace('type = "axial"', 'type = "rotary"'), "rig.type",
+     "must be one of axial, kinematic, torsional"),
     ("unknown method", DRY.replace("rtol = 1e-8", 'method = "rk4"'), "solver.method", "must be one of"),
     ("window too long", DRY.replace("cycles = 10 ", "cycles = 100 "), "analysis.cycles", "must fit"),
     ("transient too long", DRY.replace("cycles = 10 ", "transient = 5.0 "), "analysis.transient", "must be"),
@@ -281,7 +282,10 @@ def test_demo_quick(tmp_path, capsys):
     for name in ("fig7_friction_reduction.csv", "friction_reduction.csv", "friction_reduction.png",
                  "table5_refit.csv", "fig11_power_law.png", "fig7_dry/summary.csv", "fig7_dry/dahl.csv",
                  "fig7_dry/coulomb.csv", "fig7_dry/friction_force.png", "fig7_obm/friction_force.png",
-                 "fig7_obm/summary.csv"):
+                 "fig7_obm/summary.csv", "paper001/fig7_torsional/summary.csv", "paper001/fig7_torsional/eq6.csv",
+                 "paper001/fig7_torsional/disc_speed.png", "paper001/fig7_torsional/friction_torque_hysteresis.png",
+                 "paper001/fig7_torsional/phase_portrait.png", "paper001/law_comparison.csv",
+                 "paper001/law_comparison.png", "paper001/stick_slip_map.csv", "paper001/stick_slip_map.png"):
         assert name in files
 
     reduction = pd.read_csv(out / "fig7_friction_reduction.csv")
@@ -297,7 +301,8 @@ def test_demo_quick(tmp_path, capsys):
     assert sweep["kinematic_coulomb"].to_numpy() == pytest.approx(sweep["coulomb_closed_form"].to_numpy(),
                                                                   abs=1e-6)
     stdout = capsys.readouterr().out
-    for text in ("Fig. 7 cases", "VS3", "VS17", "Table 5 refit", "-0.36513", "Coulomb exact"):
+    for text in ("Fig. 7 cases", "VS3", "VS17", "Table 5 refit", "-0.36513", "Coulomb exact", "paper 001",
+                 "Stick-slip map"):
         assert text in stdout
 
 

@@ -2,7 +2,8 @@
 // period and frequency, peak and trough speed, mean speed and stick fraction, over whole cycles after a
 // transient. Cycles are delimited by upward crossings of a level (the mean speed unless given), located by
 // linear interpolation between samples; a crossing only counts once the signal has been below the level by
-// a hysteresis margin since the last one, so measurement noise near the level does not split cycles.
+// a hysteresis margin since the last one, so measurement noise near the level does not split cycles, and a
+// signal whose peak-to-trough range stays below `min_amplitude` counts as no oscillation at all.
 #pragma once
 
 #include <algorithm>
@@ -40,15 +41,17 @@ inline double time_within(double t0, double y0, double t1, double y1, double thr
 /// Limit cycle of speed samples (t, w) after `transient` seconds. `level`: the crossing level (NaN: the mean
 /// of w after the transient). `hysteresis`: the margin below the level, as a fraction of the peak-to-trough
 /// range, that re-arms the crossing detector. `stick_speed`: |w| at or below it counts as stuck.
+/// `min_amplitude`: the smallest peak-to-trough range (in w's units) that counts as an oscillation.
 inline LimitCycle limit_cycle(const double* t, const double* w, std::size_t n, double transient,
                               double level = std::numeric_limits<double>::quiet_NaN(), double stick_speed = 1e-2,
-                              double hysteresis = 0.05) {
+                              double hysteresis = 0.05, double min_amplitude = 0.0) {
     constexpr const char* who = "limit_cycle";
     detail::require_samples(who, "w", t, w, n, n);
     detail::require_non_negative(who, "transient", transient);
     detail::require_non_negative(who, "stick_speed", stick_speed);
     if (!(hysteresis >= 0.0 && hysteresis < 1.0)) detail::reject(who, "hysteresis", "in [0, 1)", hysteresis);
     if (!std::isnan(level)) detail::require_finite(who, "level", level);
+    detail::require_non_negative(who, "min_amplitude", min_amplitude);
     for (std::size_t i = 0; i < n; ++i) detail::require_finite(who, "w", w[i]);
     const double start = t[0] + transient;
     if (!(start < t[n - 1])) detail::reject(who, "transient", "shorter than the record t_last - t_first", transient);
@@ -69,7 +72,7 @@ inline LimitCycle limit_cycle(const double* t, const double* w, std::size_t n, d
             if (tc >= start) crossings.push_back(tc), armed = false;
         }
     }
-    c.cycles = crossings.size() >= 2 ? static_cast<int>(crossings.size()) - 1 : 0;
+    c.cycles = crossings.size() >= 2 && hi - lo > min_amplitude ? static_cast<int>(crossings.size()) - 1 : 0;
     c.start = c.cycles > 0 ? crossings.front() : start;
     c.end = c.cycles > 0 ? crossings.back() : t[n - 1];
     c.period = c.cycles > 0 ? (c.end - c.start) / c.cycles : std::numeric_limits<double>::infinity();
