@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -123,6 +124,9 @@ void register_results(py::module_& m) {
                             std::optional<double> level, double stick_speed, double hysteresis, double min_amplitude) {
         if (t.ndim() != 1) throw InvalidParameter("t", "limit_cycle: t must be one-dimensional");
         if (w.ndim() != 1) throw InvalidParameter("w", "limit_cycle: w must be one-dimensional");
+        if (level && !std::isfinite(*level))
+            throw InvalidParameter("level", "limit_cycle: level must be finite or None (the mean speed), got " +
+                                                std::to_string(*level));
         if (w.shape(0) != t.shape(0))
             throw InvalidParameter("w", "limit_cycle: w must have the same length as t (" + std::to_string(t.shape(0)) +
                                             " samples, got " + std::to_string(w.shape(0)) + ")");
