@@ -494,6 +494,63 @@ TEST_CASE("torsional rig, hysteretic law with a w_s < P0(w_s): the disc leaves t
     }
 }
 
+TEST_CASE("torsional rig, hysteretic law: a hold on the band edge ends when the shaft torque falls below a w_s",
+          "[torsional_rig][hysteretic][regression]") {
+    // a w_s = 0.1 N m below both levels (P0 = 1, N0 = 0.8): the disc leaves the band into a hold on its edge.
+    // The drive then reverses (w_ref = -3 rad/s): S falls below a w_s, and the band must take the disc back
+    // (it was trapped in the hold at w = +w_s with T = S = -10.5 N m, friction doing positive work).
+    HystereticFriction::Params hp;
+    hp.stick_slope = 100.0;
+    hp.accelerating.c00 = 1.0;
+    hp.decelerating.c00 = 0.8;
+    TorsionalRigParams p;
+    p.reference_speed = -3.0;
+    p.initial_drive_speed = 8.0;
+    const TorsionalRig<HystereticFriction> rig(p, HystereticFriction(hp));
+    SolverOptions o;
+    o.rtol = 1e-9;
+    o.atol = 1e-12;
+    o.output_times = grid(0.0, 10.0, 2000);
+    const Result r = simulate(rig, 10.0, o);
+    bool held = false, back_to_stick = false;
+    for (const Event& e : r.events) {
+        held = held || e.mode_after_name == "hold_positive";
+        back_to_stick = back_to_stick || (e.mode_before_name == "hold_positive" && e.mode_after_name == "stick");
+    }
+    CHECK(held);
+    CHECK(back_to_stick);
+    const std::size_t friction_work = r.column("friction_work");
+    for (std::size_t i = 1; i < r.rows(); ++i) CHECK(r.state(i, friction_work) >= r.state(i - 1, friction_work) - 1e-9);
+    CHECK(r.state(r.rows() - 1, r.column("disc_speed")) < 0.0);  // dragged backwards with the drive
+}
+
+TEST_CASE("torsional rig, hysteretic law: leaving a hold checks the branch it enters",
+          "[torsional_rig][hysteretic][regression]") {
+    // p01 = -0.02 kg m^2 > J2: the accelerating branch has a negative effective inertia. A hold (N0 < P0)
+    // that ends on it must stop the run, not integrate dw/dt = -C/B < 0 "accelerating" to -1e19 rad/s.
+    HystereticFriction::Params hp;
+    hp.stick_slope = 1000.0;
+    hp.accelerating = {0.3, 0.0, -0.02, 0.0, 0.0, 0.0};
+    hp.decelerating.c00 = 0.1;
+    TorsionalRigParams p;
+    p.initial_disc_speed = 5.0;
+    p.initial_drive_speed = 5.76;
+    SolverOptions o;
+    o.output_times = grid(0.0, 5.0, 500);
+    try {
+        (void)simulate(TorsionalRig<HystereticFriction>(p, HystereticFriction(hp)), 5.0, o);
+        FAIL("expected a SimulationError");
+    } catch (const SimulationError& e) {
+        INFO(e.what());
+        CHECK(contains(e.what(), "effective inertia"));
+        CHECK(e.time_reached() > 0.0);
+        REQUIRE(e.partial());
+        double fastest = 0.0;
+        for (double w : e.partial()->column_values("disc_speed")) fastest = std::max(fastest, std::abs(w));
+        CHECK(fastest < 10.0);
+    }
+}
+
 TEST_CASE("torsional rig, hysteretic law: a branch whose quadratic loses its root stops the run, saying why",
           "[torsional_rig][hysteretic]") {
     using Rig = TorsionalRig<HystereticFriction>;

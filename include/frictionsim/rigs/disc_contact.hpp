@@ -12,7 +12,8 @@
 //        consistent there, else slides along the band edge (the branch gap);
 //      accelerating s (s al > 0):  guards  S' - P0(|w|) (al reaches 0), D, B;
 //      decelerating s (s al < 0):  guards  N0(|w|) - S' (al reaches 0), |w| - w_s (enters stick), D, B;
-//      hold s (al = 0, BranchGap::hold): guards P0 - S' (to accelerating), S' - N0 (to decelerating);
+//      hold s (al = 0, BranchGap::hold): guards P0 - S' (to accelerating), S' - N0 (to decelerating; held on the
+//        band edge |w| = w_s: S' - a w_s, back into stick), the branch it enters checked as on any switch;
 //    with S' = s S, D the discriminant and B the effective inertia of the branch quadratic: D or B reaching
 //    zero means the branch has no real root left, and the run stops with a SimulationError saying where.
 //    A branch is consistent when its root has the branch's sign: accelerating iff S' > P0, decelerating iff
@@ -130,8 +131,8 @@ public:
         const double s = side(mode), u = s * w, signed_torque = s * shaft_torque;
         const double k = law_.scale(normal_force_);
         if (is_hold(mode)) {
-            g[0] = k * law_.branch(true).level(u) - signed_torque;   // S' rises above P0: accelerates
-            g[1] = signed_torque - k * law_.branch(false).level(u);  // S' falls below N0: decelerates
+            g[0] = k * law_.branch(true).level(u) - signed_torque;  // S' rises above P0: accelerates
+            g[1] = signed_torque - lower_hold_level(u);            // S' falls below it: decelerates or sticks
             return;
         }
         const HystereticFriction::Quadratic q = equation(mode, w, shaft_torque, inertia);
@@ -179,8 +180,14 @@ public:
             no_consistent_branch(t, w, shaft_torque, inertia,
                                  fired[2] != 0 ? "the branch equation lost its real root (discriminant reached 0)"
                                                : "the branch's effective inertia J + k (c01 + c11 |w|) fell to 1 % of J "
-                                                 "(dw/dt grows without bound as it reaches 0)");
-        if (is_hold(mode)) return s * (fired[0] != 0 ? accelerating_positive : decelerating_positive);
+                                                 "(dw/dt grows without bound as it reaches 0)",
+                                 "; the acceleration coefficients, scaled by N / N_ref, cancel the disc's inertia at "
+                                 "this speed: check p01, p11, p02 (n01, n11, n02) against J");
+        if (is_hold(mode)) {
+            if (fired[0] == 0 && on_band_edge(s * w)) return stick_band;
+            return checked_branch(t, w, shaft_torque, s, fired[0] != 0 ? accelerating_positive : decelerating_positive,
+                                  inertia);
+        }
         if (!is_accelerating(mode) && fired[1] != 0) return stick_band;
         // al reached zero: the other branch if it is consistent, else the gap
         return slip_branch(t, w, shaft_torque, s, is_accelerating(mode) ? decelerating_positive : accelerating_positive,
@@ -197,6 +204,16 @@ private:
     static int side(int mode) { return mode > 0 ? 1 : -1; }
     static bool is_hold(int mode) { return mode == hold_positive || mode == hold_negative; }
     static bool is_accelerating(int mode) { return mode == accelerating_positive || mode == accelerating_negative; }
+    bool on_band_edge(double u) const { return u <= law_.params().stick_speed; }
+
+    /// Where a hold ends as S' falls: the decelerating level N0, or, held at the band edge |w| = w_s, the
+    /// band's break-away torque a w_s (below it the band pulls the disc back in; a decelerating branch there
+    /// would enter the band at once).
+    double lower_hold_level(double u) const {
+        const double k = law_.scale(normal_force_);
+        return on_band_edge(u) ? k * law_.params().stick_slope * law_.params().stick_speed
+                               : k * law_.branch(false).level(u);
+    }
 
     HystereticFriction::Quadratic equation(int mode, double w, double shaft_torque, double inertia) const {
         const double s = side(mode);
@@ -206,11 +223,14 @@ private:
     /// Leaving the stick band on side s: the band pushes the disc out (a w_s < S'), so only the accelerating
     /// branch can take it; if S' <= P0(w_s) that branch would push it back, and the disc slides along the band
     /// edge with dw/dt = 0 and T = S (Filippov), which is the branch gap at |w| = w_s.
-    int leave_band(double t, double w, double shaft_torque, int s, double inertia) const {
+    int leave_band(double t, double& w, double shaft_torque, int s, double inertia) const {
         const double signed_torque = s * shaft_torque, k = law_.scale(normal_force_);
         if (signed_torque > k * law_.branch(true).level(law_.params().stick_speed))
             return slip_branch(t, w, shaft_torque, s, accelerating_positive, inertia);
-        if (law_.params().branch_gap == BranchGap::hold) return s * hold_positive;
+        if (law_.params().branch_gap == BranchGap::hold) {
+            w = s * law_.params().stick_speed;  // held exactly on the edge, where the hold's exits are judged
+            return s * hold_positive;
+        }
         no_consistent_branch(t, w, shaft_torque, inertia,
                              "the band's break-away torque a w_s is below the accelerating level P0(w_s), so the "
                              "accelerating branch is not consistent at the band edge",
@@ -238,10 +258,21 @@ private:
         else if (accelerates) branch = accelerating_positive;
         else if (decelerates) branch = decelerating_positive;
         if (branch == 0) return branch_gap(t, w, shaft_torque, s, inertia);
+        return checked_branch(t, w, shaft_torque, s, branch, inertia);
+    }
+
+    /// s * branch, once its equation is known to have the root the run needs (else a SimulationError).
+    int checked_branch(double t, double w, double shaft_torque, int s, int branch, double inertia) const {
+        const double u = std::max(s * w, law_.params().stick_speed);
         const HystereticFriction::Quadratic q =
-            law_.branch_equation(branch == accelerating_positive, u, signed_torque, inertia, normal_force_);
-        if (q.b <= min_effective_inertia * inertia || (q.a != 0.0 && q.discriminant() < 0.0))
-            no_consistent_branch(t, w, shaft_torque, inertia, "the consistent branch's equation has no real root");
+            law_.branch_equation(branch == accelerating_positive, u, s * shaft_torque, inertia, normal_force_);
+        if (q.b <= min_effective_inertia * inertia)
+            no_consistent_branch(t, w, shaft_torque, inertia,
+                                 "the branch's effective inertia J + k (c01 + c11 |w|) is below 1 % of J",
+                                 "; the acceleration coefficients, scaled by N / N_ref, cancel the disc's inertia: "
+                                 "lower the normal force or the magnitude of c01, c11");
+        if (q.a != 0.0 && q.discriminant() < 0.0)
+            no_consistent_branch(t, w, shaft_torque, inertia, "the branch equation has no real root");
         return s * branch;
     }
 
