@@ -103,7 +103,12 @@ TorsionalDrillStringRig make_rig(py::handle friction, const py::kwargs& kwargs) 
     std::size_t used = 0;
     for (const Field& f : fields) {
         if (!kwargs.contains(f.name)) continue;
-        p.*f.member = kwargs[f.name].cast<double>();
+        const py::handle value = kwargs[f.name];
+        if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
+            !py::hasattr(value, "__float__"))
+            throw py::type_error(std::string("TorsionalRig: ") + f.name + " must be a number (got " +
+                                 std::string(py::str(py::type::of(value).attr("__name__"))) + ")");
+        p.*f.member = value.attr("__float__")().cast<double>();
         ++used;
     }
     if (used != kwargs.size()) {
@@ -135,6 +140,12 @@ py::array_t<double> per_row(const TorsionalDrillStringRig& r, py::array_t<double
         if (m.ndim() != 1 || static_cast<std::size_t>(m.shape(0)) != rows)
             throw InvalidParameter("mode", "mode must have one entry per row of states");
         for (std::size_t k = 0; k < rows; ++k) mode[k] = m.at(k);
+        r.visit([&](const auto& s) {
+            for (int md : mode)
+                if (std::string(s.mode_name(md)) == "unknown")
+                    throw InvalidParameter("mode", "mode must hold the rig's recorded mode codes (got " +
+                                                       std::to_string(md) + ")");
+        });
     }
     py::array_t<double> out(rows);
     auto o = out.mutable_unchecked<1>();
@@ -189,16 +200,25 @@ branch_gap : {"hold", "error"}
         .def_property_readonly("reference_normal_force",
                                [](const HystereticFriction& h) { return h.params().reference_normal_force; })
         .def_property_readonly("branch_gap", [](const HystereticFriction& h) { return branch_gap_name(h.params().branch_gap); })
-        .def("torque", py::vectorize([](HystereticFriction& h, double w, double al, double normal_force) {
+        .def("_torque", py::vectorize([](HystereticFriction& h, double w, double al, double normal_force) {
                  return h.torque(w, al, normal_force);
-             }),
-             py::arg("w"), py::arg("al"), py::arg("normal_force") = hd.reference_normal_force,
+             }))
+        .def("_branch_torque", py::vectorize([](HystereticFriction& h, bool accelerating, double w, double al,
+                                                double normal_force) { return h.slip_torque(accelerating, w, al, normal_force); }))
+        .def("torque", [](py::object self, py::object w, py::object al, py::object normal_force) {
+                 if (normal_force.is_none()) normal_force = self.attr("reference_normal_force");
+                 return self.attr("_torque")(w, al, normal_force);
+             },
+             py::arg("w"), py::arg("al"), py::arg("normal_force") = py::none(),
              "Eq 6 [N m] at speed w [rad/s] and acceleration al [rad/s^2], the branch picked by the sign of w al "
-             "(al = 0 counts as decelerating); arrays broadcast.")
-        .def("branch_torque", py::vectorize([](HystereticFriction& h, bool accelerating, double w, double al,
-                                               double normal_force) { return h.slip_torque(accelerating, w, al, normal_force); }),
-             py::arg("accelerating"), py::arg("w"), py::arg("al"), py::arg("normal_force") = hd.reference_normal_force,
-             "One slip branch of eq 6 [N m], whatever the signs.")
+             "(al = 0 counts as decelerating), at normal_force [N] (default: the reference normal force, where the "
+             "coefficients hold); arrays broadcast.")
+        .def("branch_torque", [](py::object self, py::object accelerating, py::object w, py::object al, py::object normal_force) {
+                 if (normal_force.is_none()) normal_force = self.attr("reference_normal_force");
+                 return self.attr("_branch_torque")(accelerating, w, al, normal_force);
+             },
+             py::arg("accelerating"), py::arg("w"), py::arg("al"), py::arg("normal_force") = py::none(),
+             "One slip branch of eq 6 [N m], whatever the signs (normal_force as in torque()).")
         .def("__repr__", [](const HystereticFriction& h) {
             const auto& p = h.params();
             const auto tuple = [](const BranchPolynomial& b) {

@@ -260,7 +260,8 @@ class Paper001:
         header = "N2 [N] \\ w_ref [rad/s]"
         cells = [[header] + [f"{w:g}" for w in m.reference_speeds]]
         for j, force in enumerate(m.normal_forces):
-            cells.append([f"{force:g}"] + [("*" if m.stick_slip[i, j] else " ") + f"{m.peak_ratio[i, j]:.2f}"
+            cells.append([f"{force:g}"] + ["failed" if m.failed[i, j] else
+                                           ("*" if m.stick_slip[i, j] else " ") + f"{m.peak_ratio[i, j]:.2f}"
                                            for i in range(len(m.reference_speeds))])
         widths = [max(len(r[k]) for r in cells) for k in range(len(cells[0]))]
         return "\n".join("  ".join(v.ljust(widths[k]) if k == 0 else v.rjust(widths[k]) for k, v in enumerate(r))
@@ -288,7 +289,9 @@ class Paper001:
             format_table(self.law_table(), LAW_COLUMNS),
             "",
             f"6. Stick-slip map, eq 6 law: peak disc speed / w_ref, * = the disc sticks in the limit cycle "
-            f"({m.stick_slip.sum()} of {m.stick_slip.size} points; {MAP_T_END:g} s per point, limit cycle after "
+            f"({m.stick_slip.sum()} of {m.stick_slip.size} points"
+            + (f", {m.failed.sum()} failed" if m.failed.any() else "")
+            + f"; {MAP_T_END:g} s per point, limit cycle after "
             f"{MAP_TRANSIENT:g} s;",
             f"   {m.stick_slip.size} simulations on {MAP_THREADS} threads in {self.map_seconds:.2f} s"
             + ("; --quick grid" if quick else "") + ")",

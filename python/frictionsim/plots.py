@@ -258,11 +258,12 @@ def stick_slip_map_figure(stick_slip_map, *, title: str = "", point: Optional[Tu
     """Where the torsional rig stick-slips over (w_ref [rad/s], N2 [N]) (a
     :class:`frictionsim.torsional.StickSlipMap`): cells coloured by peak disc speed / w_ref (left) and by the
     oscillation frequency [Hz] (right); stick-slip cells (the disc sticks in the limit cycle) carry a black dot,
-    ``point`` (paper 001's Fig. 7 operating point) a star."""
+    ``point`` (paper 001's Fig. 7 operating point) a star, failed runs a red cross."""
     m = stick_slip_map
     speeds, forces = np.asarray(m.reference_speeds, float), np.asarray(m.normal_forces, float)
     x_edges, y_edges = _edges(speeds), _edges(forces)
     stick = np.asarray(m.stick_slip, dtype=bool)
+    failed = np.asarray(getattr(m, "failed", np.zeros_like(stick)), dtype=bool)
     figure, axes = _figure(2, width=13.0, height=5.2)
     panels = [(np.asarray(m.peak_ratio, float), "peak disc speed / $\\omega_{ref}$ [-]", "viridis", ".2f"),
               (np.where(np.asarray(m.frequency, float) > 0, m.frequency, np.nan), "oscillation frequency [Hz]",
@@ -276,15 +277,17 @@ def stick_slip_map_figure(stick_slip_map, *, title: str = "", point: Optional[Tu
                 ax.annotate(format(value, fmt), (speeds[i], forces[j]), textcoords="offset points", xytext=(0, -11),
                             ha="center", fontsize=6.5, color="w" if value < np.nanmean(values) else "k")
         ax.plot(xx[stick], yy[stick], "o", color="k", markersize=4, linestyle="none", label="stick-slip")
-        ax.plot(xx[~stick], yy[~stick], "o", markerfacecolor="none", markeredgecolor="0.85", markersize=4,
-                linestyle="none", label="no sticking")
+        ax.plot(xx[~stick & ~failed], yy[~stick & ~failed], "o", markerfacecolor="none", markeredgecolor="0.85",
+                markersize=4, linestyle="none", label="no sticking")
+        if failed.any():
+            ax.plot(xx[failed], yy[failed], "x", color="r", markersize=6, linestyle="none", label="run failed")
         if point is not None:
             ax.plot(*point, marker="*", markersize=15, color="r", markeredgecolor="k", linestyle="none",
                     label=f"Fig. 7: {point[0]:g} rad/s, {point[1]:g} N")
         ax.set_xlabel("reference speed $\\omega_{ref}$ [rad/s]")
         ax.set_ylabel("normal force $N_2$ [N]")
         ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
-    share = f"{stick.sum()} of {stick.size} points stick-slip"
+    share = f"{stick.sum()} of {stick.size} points stick-slip" + (f", {failed.sum()} failed" if failed.any() else "")
     figure.suptitle(_titled(title, f"stick-slip map of the torsional rig (paper 001): {share}"), fontsize=10)
     return figure
 

@@ -26,6 +26,7 @@ from typing import Any, Dict, Optional, Sequence
 import numpy as np
 
 from . import _core
+from .errors import InvalidParameterError
 
 __all__ = ["FIG7", "LimitCycle", "StickSlipMap", "compare_laws", "fig7_friction", "fig7_laws", "limit_cycle",
            "simulate_fig7", "stick_slip_map", "stick_slip_point"]
@@ -39,9 +40,13 @@ def fig7_friction(branch_gap: str = "hold") -> "_core.HystereticFriction":
 
     p = (0.95, -0.02, -0.00315, 0.0005, 0, 2e-5), n = (0.98, -0.02, -0.00315, 0.0005, 0, 0) in SI units,
     stick slope 1378 N m s/rad with w_s = 1e-3 rad/s (break-away 1.378 N m), at N_ref = 35 N. A Stribeck-like
-    level falling with speed (p10 < 0: steady rotation at 5.76 rad/s is unstable), the decelerating branch 0.03 N m
-    above the accelerating one (Fig. 5a's loop; both branches consistent at dw/dt = 0, so no gap rule is needed
-    here), and the tuned acceleration coefficient.
+    level falling with speed (p10 < 0: velocity weakening; with the shaft damping steady rotation at 5.76 rad/s
+    is still barely stable, and stick-slip is the large-amplitude cycle reached from rest), the decelerating
+    branch 0.03 N m above the accelerating one (Fig. 5a's loop; both branches consistent at dw/dt = 0, so no gap
+    rule is needed here; the jump of dw/dt at each branch change keeps a small oscillation alive where the disc
+    does not stick, which is why the map's non-sticking points still oscillate by a few %), and the tuned
+    acceleration coefficient. Valid for N2 < 163 N: the coefficients scale with N2 / 35 N, and beyond that p01
+    cancels the disc's inertia (the run then stops, saying so).
     """
     return _core.paper001_fig7_friction(branch_gap)
 
@@ -127,8 +132,16 @@ def simulate_fig7(friction=None, t_end: float = 40.0, *, sample_time: float = 1e
     from . import TorsionalRig, simulate
 
     rig = TorsionalRig(fig7_friction() if friction is None else friction, **rig_params)
-    n = int(round(t_end / sample_time))
-    result = simulate(rig, t_end, output_times=np.linspace(0.0, n * sample_time, n + 1), method=method, rtol=rtol)
+    if not (np.isfinite(t_end) and t_end > 0):
+        raise InvalidParameterError("t_end", f"simulate_fig7: t_end must be positive and finite (got {t_end!r})")
+    if not (np.isfinite(sample_time) and 0 < sample_time <= t_end):
+        raise InvalidParameterError("sample_time",
+                                    f"simulate_fig7: sample_time must be in (0, t_end] (got {sample_time!r})")
+    n = int(np.floor(t_end / sample_time * (1 + 1e-12)))  # samples at k dt up to t_end; t_end itself too
+    times = np.minimum(np.arange(n + 1) * sample_time, t_end)
+    if times[-1] < t_end:
+        times = np.append(times, t_end)
+    result = simulate(rig, t_end, output_times=np.unique(times), method=method, rtol=rtol)
     return rig, result
 
 
@@ -163,8 +176,9 @@ def stick_slip_point(*, reference_speed: float, normal_force: float, friction=No
 @dataclass(frozen=True)
 class StickSlipMap:
     """Stick-slip over a (reference speed, normal force) grid: arrays of shape (len(reference_speeds),
-    len(normal_forces)). stick_slip: 1 where the disc sticks in a limit cycle; frequency [Hz] (0 without an
-    oscillation), peak_ratio = peak disc speed / w_ref, stick_fraction."""
+    len(normal_forces)). stick_slip: True where the disc sticks in a limit cycle; frequency [Hz] (0 without an
+    oscillation), peak_ratio = peak disc speed / w_ref, stick_fraction; failed: True where the run failed
+    (``errors="collect"``; NaN in the float arrays, False in stick_slip)."""
 
     reference_speeds: np.ndarray
     normal_forces: np.ndarray
@@ -173,6 +187,7 @@ class StickSlipMap:
     peak_ratio: np.ndarray
     stick_fraction: np.ndarray
     sweep: Any
+    failed: np.ndarray
 
     def to_pandas(self):
         return self.sweep.to_pandas()
@@ -196,5 +211,7 @@ def stick_slip_map(reference_speeds: Sequence[float], normal_forces: Sequence[fl
     fixed = dict(friction=friction, t_end=t_end, transient=transient, **rig_params)
     result = sweep(stick_slip_point, {"reference_speed": list(speeds), "normal_force": list(forces)}, fixed=fixed,
                    executor=executor, progress=progress, errors=errors)
+    failed = np.zeros(result.grid_shape, dtype=bool)
+    failed.flat[result.failed] = True
     return StickSlipMap(speeds, forces, result.as_array("stick_slip") > 0.5, result.as_array("frequency"),
-                        result.as_array("peak_ratio"), result.as_array("stick_fraction"), result)
+                        result.as_array("peak_ratio"), result.as_array("stick_fraction"), result, failed)

@@ -433,3 +433,40 @@ def test_no_consistent_branch_reports_where_and_when():
     # up to the first hold the two runs are the same run
     first_hold = next(e.time for e in held.events if e.mode_after_name == "hold_positive")
     assert first_hold == pytest.approx(error.time_reached, rel=1e-9)
+
+
+# ------------------------------------------------------------------------------- review regressions
+
+def test_hysteretic_torque_defaults_to_the_laws_reference_normal_force():
+    law = fs.HystereticFriction(100.0, (1.0, 0, 0, 0, 0, 0), (0.8, 0, 0, 0, 0, 0), reference_normal_force=50.0)
+    assert law.torque(5.0, 1.0) == pytest.approx(1.0)          # at N_ref the coefficients hold as given
+    assert law.torque(5.0, 1.0, 25.0) == pytest.approx(0.5)    # N / N_ref
+    assert law.branch_torque(False, 5.0, -1.0) == pytest.approx(0.8)
+
+
+def test_rig_keyword_that_is_not_a_number_is_named():
+    with pytest.raises(TypeError, match="disc_inertia"):
+        fs.TorsionalRig(fs.torsional.fig7_friction(), disc_inertia="a")
+
+
+def test_disc_acceleration_rejects_unknown_mode_codes():
+    rig, result = fs.torsional.simulate_fig7(t_end=1.0)
+    with pytest.raises(ValueError, match="mode") as info:
+        rig.disc_acceleration(result.states, np.full(len(result.t), 99))
+    assert info.value.parameter == "mode"
+
+
+def test_simulate_fig7_ends_at_t_end_whatever_the_sample_time():
+    _, result = fs.torsional.simulate_fig7(t_end=1.0006, sample_time=1e-3)
+    assert result.t[-1] == pytest.approx(1.0006) and np.all(np.diff(result.t) > 0)
+    with pytest.raises(ValueError, match="sample_time"):
+        fs.torsional.simulate_fig7(t_end=1.0, sample_time=0.0)
+
+
+def test_stick_slip_map_marks_failed_points():
+    # N2 = 200 N: the Fig. 7 set's p01, scaled by N2 / 35 N, cancels the disc's inertia (valid below 163 N)
+    m = fs.torsional.stick_slip_map([5.76], [35.0, 200.0], t_end=25.0, transient=10.0, errors="collect")
+    assert m.failed.tolist() == [[False, True]]
+    assert m.stick_slip.tolist() == [[True, False]] and np.isnan(m.frequency[0, 1])
+    with pytest.raises(Exception, match="effective inertia"):
+        fs.torsional.stick_slip_map([5.76], [200.0], t_end=25.0, transient=10.0)

@@ -282,3 +282,11 @@ def test_rank_deficient_branch_is_rejected():
     with pytest.raises(ValueError, match="decelerating branch a rank-deficient design") as error:
         fit_hysteretic_friction(w, al, torque, guard=0)
     assert error.value.parameter == "disc_acceleration"
+
+
+def test_guard_longer_than_the_record_is_named():
+    w = np.linspace(0.5, 5.0, 400)
+    al = np.where(np.arange(400) % 2 == 0, 1.0, -1.0)
+    with pytest.raises(ValueError, match="guard") as info:
+        fit_hysteretic_friction(w, al, np.ones(400), guard=300)
+    assert info.value.parameter == "guard"

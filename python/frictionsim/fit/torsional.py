@@ -305,6 +305,9 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     torque = _signal(fn, "friction_torque", friction_torque, ("disc_speed", w.size))
     w_s = _number(fn, "stick_speed", stick_speed)
     guard = _integer(fn, "guard", guard, 0, " (samples)")
+    if 2 * guard + 1 > w.size:
+        _reject(fn, "guard", f"must leave the record longer than 2 guard + 1 samples (got {guard} for {w.size} "
+                             "samples)")
     if branch_gap not in ("hold", "error"):
         _reject(fn, "branch_gap", f"must be 'hold' or 'error' (got {branch_gap!r})")
     if stick_threshold is None:
