@@ -39,6 +39,12 @@ void axial_dahl(benchmark::State& state, Method method, double rtol) {
     report(state, r, mean_friction_over_cycles(r, rig.period(), 0.0, 10));
 }
 
+/// The axial-Dahl scenario at rtol = 10^(-state.range(0) / 10) (atol = 1e-4 rtol): what bench/compare.py
+/// searches for the loosest tolerance that meets its accuracy target, e.g. axial_dahl_tolerance/dormand_prince/80.
+void axial_dahl_tolerance(benchmark::State& state, Method method) {
+    axial_dahl(state, method, std::pow(10.0, -static_cast<double>(state.range(0)) / 10.0));
+}
+
 /// A 20-s stick-slip run of `rig` at rtol 1e-8, timed per simulation.
 template <class Rig>
 Result run_stick_slip(benchmark::State& state, const Rig& rig, Method method) {
@@ -103,6 +109,11 @@ BENCHMARK_CAPTURE(torsional_stick_slip, stribeck_dormand_prince,
 BENCHMARK_CAPTURE(torsional_stick_slip, stribeck_cvode_bdf, Stribeck(Stribeck::Params{0.22, 0.3566, 0.3, 1.0, 0.0, 0.0}),
                   Method::cvode_bdf)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(axial_dahl_tolerance, dormand_prince, Method::dormand_prince)
+    ->DenseRange(40, 130, 5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(axial_dahl_tolerance, cvode_bdf, Method::cvode_bdf)->DenseRange(40, 120, 5)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(axial_dahl_tolerance, cvode_adams, Method::cvode_adams)
+    ->DenseRange(40, 120, 5)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, dormand_prince_1e8, Method::dormand_prince, 1e-8)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, cvode_bdf_1e8, Method::cvode_bdf, 1e-8)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(axial_dahl, cvode_adams_1e8, Method::cvode_adams, 1e-8)->Unit(benchmark::kMillisecond);
