@@ -33,6 +33,7 @@ public:
     double slip_force(double /*v_r*/, double normal_force, int direction) const {
         return direction * mu_ * normal_force;  // eq 8: mu F_N sgn(v_r)
     }
+    double slip_slope(double, double, int) const { return 0.0; }
     double karnopp_band() const { return 0.0; }
 
 private:

@@ -40,6 +40,18 @@ public:
         dz[0] = v_r * shaped;
     }
 
+    StatePartials<1> partials(double v_r, double normal_force, const double* z, int branch) const {
+        const double c = k_t_ / (mu_ * normal_force) * branch;
+        const double b = 1.0 - c * z[0];
+        const double shaped = alpha_ == 1.0 ? b : std::copysign(std::pow(std::abs(b), alpha_), b);
+        const double slope = alpha_ == 1.0 ? 1.0 : (b == 0.0 ? 0.0 : alpha_ * std::pow(std::abs(b), alpha_ - 1.0));
+        StatePartials<1> p;
+        p.force_state[0] = k_t_;
+        p.rate_velocity[0] = shaped;
+        p.rate_state[0][0] = -v_r * slope * c;
+        return p;
+    }
+
 private:
     double mu_, k_t_, alpha_;
 };

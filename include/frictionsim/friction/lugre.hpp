@@ -58,6 +58,22 @@ public:
         return p_.bristle_stiffness * z[0] + p_.bristle_damping * dz + p_.viscous_damping * v_r;
     }
 
+    StatePartials<1> partials(double v_r, double normal_force, const double* z, int /*branch*/) const {
+        const double g = stribeck_level(v_r, normal_force);
+        const double r = v_r / p_.stribeck_velocity;
+        const double dg = -normal_force * (p_.static_coefficient - p_.coulomb_coefficient) * std::exp(-r * r) * 2.0 * r /
+                          p_.stribeck_velocity;
+        const double s0 = p_.bristle_stiffness;
+        // dz/dt = v - s0 |v| z / g(v):  d/dv (|v| / g) = sgn(v) / g - |v| g' / g^2
+        const double d_ratio = sign_of(v_r) / g - std::abs(v_r) * dg / (g * g);
+        StatePartials<1> p;
+        p.rate_velocity[0] = 1.0 - s0 * z[0] * d_ratio;
+        p.rate_state[0][0] = -s0 * std::abs(v_r) / g;
+        p.force_velocity = p_.bristle_damping * p.rate_velocity[0] + p_.viscous_damping;
+        p.force_state[0] = s0 + p_.bristle_damping * p.rate_state[0][0];
+        return p;
+    }
+
 private:
     Params p_;
 };

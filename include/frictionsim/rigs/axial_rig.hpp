@@ -109,6 +109,36 @@ public:
         dxdt[drive_work] = f_drive * p_.sliding_velocity;
     }
 
+    /// Analytic Jacobian d(rhs)/dx, column-major (J[column * state_size + row]), entries not set left as given
+    /// (CVODE zeroes J first).
+    void jacobian(double t, const double* x, int mode, double* J) const {
+        constexpr std::size_t n = state_size;
+        const auto at = [&](std::size_t row, std::size_t column) -> double& { return J[column * n + row]; };
+        const double v_r = x[velocity] - surface_velocity(t);
+        const double f_stick = stick_force(t, x);
+        const double f = Switching::force(law_, v_r, p_.normal_force, x + law_state, mode, f_stick);
+        double df_dstick = 0.0;
+        const StatePartials<Z> d =
+            Switching::partials(law_, v_r, p_.normal_force, x + law_state, mode, f_stick, df_dstick);
+        const double k = p_.drive_stiffness, m = p_.mass, v = x[velocity];
+        const double df_dx = -k * df_dstick;  // the stick force falls with x through the drive spring
+        at(position, velocity) = 1.0;
+        at(velocity, position) = (-k - df_dx) / m;
+        at(velocity, velocity) = -d.force_velocity / m;
+        at(friction_impulse, position) = df_dx;
+        at(friction_impulse, velocity) = d.force_velocity;
+        at(friction_work, position) = v * df_dx;
+        at(friction_work, velocity) = f + v * d.force_velocity;
+        at(drive_work, position) = -k * p_.sliding_velocity;
+        for (std::size_t j = 0; j < Z; ++j) {
+            at(velocity, law_state + j) = -d.force_state[j] / m;
+            at(friction_impulse, law_state + j) = d.force_state[j];
+            at(friction_work, law_state + j) = v * d.force_state[j];
+            at(law_state + j, velocity) = d.rate_velocity[j];
+            for (std::size_t i = 0; i < Z; ++i) at(law_state + i, law_state + j) = d.rate_state[i][j];
+        }
+    }
+
     void guards(double t, const double* x, int mode, double* g) const {
         Switching::guards(law_, x[velocity] - surface_velocity(t), p_.normal_force, mode, stick_force(t, x), g);
     }

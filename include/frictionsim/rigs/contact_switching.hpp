@@ -42,6 +42,23 @@ struct ContactSwitching {
         }
     }
 
+    /// The friction force's first derivatives in `mode` (analytic Jacobians): dF/dv_r and, for state laws, the
+    /// law's partials; `force_stick_slope` is dF/dF_stick (1 while stick holds inside the static limit, else 0).
+    static StatePartials<Law::state_count> partials(const Law& law, double v_r, double normal_force, const double* z,
+                                                    int mode, double stick_force, double& force_stick_slope) {
+        force_stick_slope = 0.0;
+        if constexpr (set_valued) {
+            (void)z;
+            StatePartials<0> p;
+            if (mode != stick) p.force_velocity = law.slip_slope(v_r, normal_force, mode);
+            else if (std::abs(stick_force) < law.static_limit(normal_force)) force_stick_slope = 1.0;
+            return p;
+        } else {
+            (void)stick_force;
+            return law.partials(v_r, normal_force, z, mode);
+        }
+    }
+
     static void guards(const Law& law, double v_r, double normal_force, int mode, double stick_force, double* g) {
         if constexpr (set_valued) {
             if (mode == stick) {
