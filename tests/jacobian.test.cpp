@@ -76,6 +76,22 @@ TEST_CASE("axial rig Jacobian: analytic = central differences of the right-hand 
     }
 }
 
+TEST_CASE("kinematic rig Jacobian: analytic = central differences (the law's states)", "[jacobian][kinematic_rig]") {
+    const HarmonicSlidingVelocity v(1e-3, 0.5, 2 * pi * 17.0);  // paper 000: v_r = v_d - v_a cos(w t)
+    LuGre::Params lp;
+    lp.coulomb_coefficient = 0.41;
+    lp.static_coefficient = 0.45;
+    lp.stribeck_velocity = 0.1;
+    const KinematicRig<LuGre, HarmonicSlidingVelocity> lugre(LuGre(lp), v, ConstantSignal(90.0));
+    const KinematicRig<Dahl, HarmonicSlidingVelocity> dahl(Dahl(0.41, 4e4), v, ConstantSignal(90.0));
+    for (double t : {0.003, 0.011, 0.02, 0.041}) {
+        for (double z : {-4e-4, 1e-5, 6e-4}) {
+            check_jacobian(lugre, t, {z, 0.1, 0.01}, 0);
+            check_jacobian(dahl, t, {z, 0.1, 0.01}, sign_of(v(t)));
+        }
+    }
+}
+
 TEST_CASE("axial rig Jacobian: CVODE BDF reaches the same answer with it as with difference quotients",
           "[jacobian][cvode]") {
     // A wrapper that hides the rig's jacobian() makes CVODE fall back to difference quotients.

@@ -57,6 +57,22 @@ public:
         dxdt[friction_work] = f * v;
     }
 
+    /// Analytic Jacobian, column-major: only the law's states are free (v_r and N are imposed).
+    void jacobian(double t, const double* x, int mode, double* J) const {
+        if constexpr (Z > 0) {
+            constexpr std::size_t n = state_size;
+            const double v = v_r_(t);
+            const StatePartials<Z> d = law_.partials(v, normal_force(t), x + law_state, mode);
+            for (std::size_t j = 0; j < Z; ++j) {
+                J[(law_state + j) * n + friction_impulse] = d.force_state[j];
+                J[(law_state + j) * n + friction_work] = v * d.force_state[j];
+                for (std::size_t i = 0; i < Z; ++i) J[(law_state + j) * n + law_state + i] = d.rate_state[i][j];
+            }
+        } else {
+            (void)t, (void)x, (void)mode, (void)J;
+        }
+    }
+
     void guards(double t, const double* /*x*/, int mode, double* g) const {
         if constexpr (branches) g[0] = mode * v_r_(t);
     }
