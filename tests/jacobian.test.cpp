@@ -92,6 +92,52 @@ TEST_CASE("kinematic rig Jacobian: analytic = central differences (the law's sta
     }
 }
 
+namespace {
+/// The torsional rig at random states in the given disc modes, with the motor turning, stuck and reversed.
+template <class Law>
+void check_torsional(Law law, std::initializer_list<int> disc_modes) {
+    using Rig = TorsionalRig<Law>;
+    const Rig rig(TorsionalRigParams{}, std::move(law));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (int trial = 0; trial < 10; ++trial) {
+        for (int disc : disc_modes) {
+            for (int motor : {slip_positive, stick, slip_negative}) {
+                std::array<double, Rig::state_size> x{};
+                x[Rig::disc_angle] = 3.0 * unit(rng);
+                // a speed on the mode's side, off the switching surfaces; ~0 in stick
+                x[Rig::disc_speed] = disc == 0 ? 2e-4 * unit(rng) : (disc > 0 ? 1 : -1) * (3.0 + 2.0 * unit(rng));
+                x[Rig::shaft_twist] = (disc < 0 ? -1 : 1) * (2.5 + 0.5 * unit(rng));  // S on the slip's side
+                x[Rig::drive_speed] = motor == stick ? 0.0 : motor * (5.0 + unit(rng));
+                x[Rig::current] = 1.5 + unit(rng);
+                x[Rig::speed_error_integral] = 0.9 + 0.1 * unit(rng);
+                for (std::size_t j = 0; j < Law::state_count; ++j) x[Rig::law_state + j] = 1e-4 * unit(rng);
+                check_jacobian(rig, 0.0, x, Rig::encode_mode(disc, motor));
+            }
+        }
+    }
+}
+}  // namespace
+
+TEST_CASE("torsional rig Jacobian: analytic = central differences, every disc and motor mode",
+          "[jacobian][torsional_rig]") {
+    SECTION("Coulomb") { check_torsional(Coulomb(0.2714, 0.5), {slip_negative, stick, slip_positive}); }
+    SECTION("Stribeck") {
+        check_torsional(Stribeck(Stribeck::Params{0.22, 0.3566, 0.3, 1.0, 0.0, 0.0}), {slip_negative, slip_positive});
+    }
+    SECTION("Dahl") { check_torsional(Dahl(0.2714, 1e4), {slip_negative, slip_positive}); }
+    SECTION("LuGre") {
+        check_torsional(LuGre(LuGre::Params{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0}), {0});
+    }
+    SECTION("eq 6: stick band, both branches on both sides, hold") {
+        HystereticFriction::Params hp = paper001_fig7_friction().params();
+        hp.accelerating.c11 = 2e-4;  // every coefficient in play
+        hp.decelerating.c11 = -1e-4;
+        hp.decelerating.c02 = -1e-5;
+        check_torsional(HystereticFriction(hp), {-3, -2, -1, 0, 1, 2, 3});
+    }
+}
+
 TEST_CASE("axial rig Jacobian: CVODE BDF reaches the same answer with it as with difference quotients",
           "[jacobian][cvode]") {
     // A wrapper that hides the rig's jacobian() makes CVODE fall back to difference quotients.

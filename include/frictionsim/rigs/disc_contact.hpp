@@ -40,6 +40,17 @@ struct DiscResponse {
     double torque;
 };
 
+/// First derivatives of the disc's response in one mode (analytic Jacobians): of the friction torque T and of
+/// the law's state rates, with respect to the disc speed w, the shaft torque S and the law's states z. The
+/// acceleration follows from J dw/dt = S - T.
+template <std::size_t Z>
+struct DiscPartials {
+    double torque_speed = 0.0, torque_shaft = 0.0;  ///< dT/dw, dT/dS
+    std::array<double, Z> torque_state{};           ///< dT/dz_j
+    std::array<double, Z> rate_speed{};             ///< d(dz_i/dt)/dw
+    std::array<std::array<double, Z>, Z> rate_state{};
+};
+
 template <class Law>
 class DiscContact {
     using Switching = ContactSwitching<Law>;
@@ -66,6 +77,21 @@ public:
     void state_derivative(double w, const double* z, int mode, double* dz) const {
         if constexpr (state_count > 0) law_.state_derivative(radius_ * w, normal_force_, z, mode, dz);
         else (void)w, (void)z, (void)mode, (void)dz;
+    }
+    /// T = r F(r w, N, z, S / r): chain rule through the contact radius.
+    DiscPartials<state_count> partials(double w, double shaft_torque, const double* z, int mode, double) const {
+        double force_stick_slope = 0.0;
+        const StatePartials<state_count> f = Switching::partials(law_, radius_ * w, normal_force_, z, mode,
+                                                                 shaft_torque / radius_, force_stick_slope);
+        DiscPartials<state_count> d;
+        d.torque_speed = radius_ * radius_ * f.force_velocity;
+        d.torque_shaft = force_stick_slope;
+        for (std::size_t j = 0; j < state_count; ++j) {
+            d.torque_state[j] = radius_ * f.force_state[j];
+            d.rate_speed[j] = radius_ * f.rate_velocity[j];
+            d.rate_state[j] = f.rate_state[j];
+        }
+        return d;
     }
     void guards(double w, double shaft_torque, const double*, int mode, double, double* g) const {
         Switching::guards(law_, radius_ * w, normal_force_, mode, shaft_torque / radius_, g);
@@ -119,6 +145,27 @@ public:
         return {s * b, shaft_torque - inertia * s * b};
     }
     void state_derivative(double, const double*, int, double*) const {}
+
+    /// Stick: T = k a w. Hold: T = S. Slip: b = s dw/dt solves A b^2 + B(u) b + C(u, S') = 0 (u = s w, S' = s S),
+    /// so by implicit differentiation db/du = -(B'(u) b + dC/du) / (2 A b + B) and db/dS' = 1 / (2 A b + B),
+    /// and T = S - J dw/dt.
+    DiscPartials<0> partials(double w, double shaft_torque, const double*, int mode, double inertia) const {
+        DiscPartials<0> d;
+        if (mode == stick_band) {
+            d.torque_speed = law_.scale(normal_force_) * law_.params().stick_slope;
+        } else if (is_hold(mode)) {
+            d.torque_shaft = 1.0;
+        } else {
+            const HystereticFriction::Quadratic q = equation(mode, w, shaft_torque, inertia);
+            const BranchPolynomial& c = law_.branch(is_accelerating(mode));
+            const double k = law_.scale(normal_force_), u = side(mode) * w, b = q.root();
+            const double slope = 2.0 * q.a * b + q.b;
+            const double db_du = -(k * c.c11 * b + k * (c.c10 + 2.0 * c.c20 * u)) / slope;
+            d.torque_speed = -inertia * db_du;             // d(s b)/dw = db/du
+            d.torque_shaft = 1.0 - inertia / slope;        // d(s b)/dS = db/dS'
+        }
+        return d;
+    }
 
     void guards(double w, double shaft_torque, const double*, int mode, double inertia, double* g) const {
         g[0] = g[1] = g[2] = g[3] = 1.0;

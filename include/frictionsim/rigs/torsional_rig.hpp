@@ -76,6 +76,7 @@ struct MotorFriction {
     double limit;
     double static_limit(double) const { return limit; }
     double slip_force(double, double, int direction) const { return direction * limit; }
+    double slip_slope(double, double, int) const { return 0.0; }
     double karnopp_band() const { return 0.0; }
 };
 }  // namespace detail
@@ -169,6 +170,63 @@ public:
         dxdt[damping_work] = p_.shaft_damping * (w3 - w2) * (w3 - w2) + motor_viscous_ * w3 * w3 + motor_friction * w3;
         dxdt[electrical_work] = v * i;
         dxdt[ohmic_work] = p_.resistance * i * i;
+    }
+
+    /// Analytic Jacobian d(rhs)/dx, column-major (J[column * state_size + row]); CVODE zeroes J first.
+    void jacobian(double, const double* x, int mode, double* J) const {
+        constexpr std::size_t n = state_size;
+        const auto at = [&](std::size_t row, std::size_t column) -> double& { return J[column * n + row]; };
+        const double w2 = x[disc_speed], w3 = x[drive_speed], i = x[current];
+        const double s = shaft_torque(x), k2 = p_.shaft_stiffness, d2 = p_.shaft_damping;
+        const double eta = p_.gear_ratio, kt = p_.torque_constant, J2 = p_.disc_inertia;
+        const int disc_mode = disc_mode_of(mode);
+        const DiscResponse disc = disc_.respond(w2, s, x + law_state, disc_mode, J2);
+        const DiscPartials<Z> d = disc_.partials(w2, s, x + law_state, disc_mode, J2);
+        // S = k2 twist + d2 (w3 - w2); T = T(w2, S, z)
+        const double dT_dw2 = d.torque_speed - d2 * d.torque_shaft, dT_dtwist = k2 * d.torque_shaft,
+                     dT_dw3 = d2 * d.torque_shaft;
+        at(disc_angle, disc_speed) = 1.0;
+        at(disc_speed, disc_speed) = (-d2 - dT_dw2) / J2;
+        at(disc_speed, shaft_twist) = (k2 - dT_dtwist) / J2;
+        at(disc_speed, drive_speed) = (d2 - dT_dw3) / J2;
+        at(shaft_twist, drive_speed) = 1.0;
+        at(shaft_twist, disc_speed) = -1.0;
+        // motor: (held - T_m) / (eta^2 J_m); a holding motor friction (stick inside the limit) cancels `held`
+        const double held = motor_holding_torque(x, s);
+        double motor_slope = 0.0;
+        (void)Motor::partials(motor_, w3, 1.0, nullptr, motor_mode_of(mode), held, motor_slope);
+        const double free = 1.0 - motor_slope;  // d(held - T_m) = free * d(held)
+        const double motor_friction = Motor::force(motor_, w3, 1.0, nullptr, motor_mode_of(mode), held);
+        const double dheld_di = eta * kt, dheld_dw3 = -motor_viscous_ - d2, dheld_dtwist = -k2, dheld_dw2 = d2;
+        at(drive_speed, current) = free * dheld_di / motor_inertia_;
+        at(drive_speed, drive_speed) = free * dheld_dw3 / motor_inertia_;
+        at(drive_speed, shaft_twist) = free * dheld_dtwist / motor_inertia_;
+        at(drive_speed, disc_speed) = free * dheld_dw2 / motor_inertia_;
+        at(current, drive_speed) = (-p_.proportional_gain - eta * p_.back_emf_constant) / p_.inductance;
+        at(current, current) = -p_.resistance / p_.inductance;
+        at(current, speed_error_integral) = p_.integral_gain / p_.inductance;
+        at(speed_error_integral, drive_speed) = -1.0;
+        for (std::size_t j = 0; j < Z; ++j) {
+            at(disc_speed, law_state + j) = -d.torque_state[j] / J2;
+            at(friction_work, law_state + j) = w2 * d.torque_state[j];
+            at(law_state + j, disc_speed) = d.rate_speed[j];
+            for (std::size_t k = 0; k < Z; ++k) at(law_state + k, law_state + j) = d.rate_state[k][j];
+        }
+        at(motor_work, current) = eta * kt * w3;
+        at(motor_work, drive_speed) = eta * kt * i;
+        at(friction_work, disc_speed) = disc.torque + w2 * dT_dw2;
+        at(friction_work, shaft_twist) = w2 * dT_dtwist;
+        at(friction_work, drive_speed) = w2 * dT_dw3;
+        // damping: d2 (w3 - w2)^2 + eta^2 C_m w3^2 + T_m w3, with dT_m = motor_slope * d(held)
+        at(damping_work, disc_speed) = -2.0 * d2 * (w3 - w2) + w3 * motor_slope * dheld_dw2;
+        at(damping_work, drive_speed) =
+            2.0 * d2 * (w3 - w2) + 2.0 * motor_viscous_ * w3 + motor_friction + w3 * motor_slope * dheld_dw3;
+        at(damping_work, shaft_twist) = w3 * motor_slope * dheld_dtwist;
+        at(damping_work, current) = w3 * motor_slope * dheld_di;
+        at(electrical_work, current) = voltage(x);
+        at(electrical_work, drive_speed) = -p_.proportional_gain * i;
+        at(electrical_work, speed_error_integral) = p_.integral_gain * i;
+        at(ohmic_work, current) = 2.0 * p_.resistance * i;
     }
 
     void guards(double, const double* x, int mode, double* g) const {
