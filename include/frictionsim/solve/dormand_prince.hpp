@@ -32,7 +32,10 @@ public:
         mode_ = mode;
         std::copy(x, x + N, y_.begin());
         rhs(t_, y_, k1_);
-        h_ = 0.0;  // choose anew: the dynamics just changed discontinuously
+        // Start from the last accepted step: at a switch the right-hand side jumps (or kinks) but its time scales
+        // rarely change, and Hairer's starting guess from one Euler step would ramp up from far below them. A
+        // step too long for the new mode fails the error test once and shrinks.
+        h_ = std::min(h_dense_accepted_, opt_.max_step);
         facold_ = 1e-4;
         last_rejected_ = false;
         guards(t_, y_, g_);
@@ -183,7 +186,7 @@ private:
         if (last_rejected_) h_new = std::min(h_new, h);
         facold_ = std::max(err, 1e-4);
         last_rejected_ = false;
-        h_dense_ = h;
+        h_dense_ = h_dense_accepted_ = h;
         t_prev_ = t_;
         t_ = t_new;
         y_ = y1_;
@@ -289,6 +292,7 @@ private:
     const SolverOptions& opt_;
     int mode_ = 0;
     double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0, facold_ = 1e-4;
+    double h_dense_accepted_ = 0.0;  ///< last accepted step, 0 before the first: the step after a restart
     bool last_rejected_ = false;
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
     State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
