@@ -3,8 +3,10 @@
 #   frictionsim_install_deps   install the Debian packages that are missing (apt-get; sudo when not root)
 #   frictionsim_configure      configure $FRICTIONSIM_BUILD_DIR (default build/, Release, Ninja if available)
 #   frictionsim_build [target] build everything, or one target
-#   frictionsim_python_setup   create the project venv ($FRICTIONSIM_VENV, default .venv) and pip install the
-#                              package with its test extras (builds the _core extension; PyPI only)
+#   frictionsim_python_setup [extras]
+#                              create the project venv ($FRICTIONSIM_VENV, default .venv) and pip install the
+#                              package with its extras (default "test"; e.g. "bench") (builds the _core
+#                              extension; PyPI only, binary wheels only for the extras' packages)
 #
 # Environment: FRICTIONSIM_BUILD_DIR (default <repo>/build), FRICTIONSIM_CMAKE_ARGS (extra cmake arguments,
 # split on spaces, e.g. "-DFRICTIONSIM_SANITIZE=ON"), FRICTIONSIM_SKIP_DEPS=1 (do not touch packages),
@@ -77,14 +79,16 @@ frictionsim_build() {
 }
 
 frictionsim_python_setup() {
+    local extras="${1:-test}"
     local python="${FRICTIONSIM_PYTHON:-python3}"
     if [[ ! -x "$FRICTIONSIM_VENV/bin/python" ]]; then
         frictionsim_log "creating venv $FRICTIONSIM_VENV"
         "$python" -m venv "$FRICTIONSIM_VENV"
     fi
-    frictionsim_log "pip install .[test] into $FRICTIONSIM_VENV (builds frictionsim._core)"
+    frictionsim_log "pip install .[$extras] into $FRICTIONSIM_VENV (builds frictionsim._core)"
     "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --upgrade pip
     # CMAKE_BUILD_PARALLEL_LEVEL: scikit-build-core's build uses both cores like the C++ build
     CMAKE_BUILD_PARALLEL_LEVEL="$FRICTIONSIM_JOBS" \
-        "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet "$FRICTIONSIM_ROOT[test]"
+        "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --only-binary=scikit-sundae,sundials4py \
+        "$FRICTIONSIM_ROOT[$extras]"
 }
