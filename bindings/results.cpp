@@ -92,6 +92,18 @@ void register_results(py::module_& m) {
         .def_property_readonly("friction_force", [](const Result& r) { return to_array(r.friction_force); })
         .def_property_readonly("mode", [](const Result& r) { return to_array(r.mode); })
         .def_readonly("events", &Result::events)
+        .def_property_readonly("event_rows", [](const Result& r) {
+            // one tuple per event (time, name, switching_function, mode_before, mode_after, mode names): far
+            // cheaper to hand over than Event objects, whose attributes Python would read one by one
+            py::list rows(r.events.size());
+            for (std::size_t k = 0; k < r.events.size(); ++k) {
+                const Event& e = r.events[k];
+                rows[k] = py::make_tuple(e.time, e.name, e.switching_function, e.mode_before, e.mode_after,
+                                         e.mode_before_name, e.mode_after_name);
+            }
+            return rows;
+        }, "The event log as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, "
+           "mode_after_name).")
         .def_property_readonly("stats", [](const Result& r) {
             const SolverStats& s = r.stats;
             return py::dict(py::arg("steps") = s.steps, py::arg("rhs_evaluations") = s.rhs_evaluations,

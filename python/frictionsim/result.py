@@ -60,17 +60,23 @@ class Result:
         self.state_names: List[str] = list(raw.state_names)
         self.friction_force: np.ndarray = raw.friction_force
         self.mode: np.ndarray = raw.mode
-        self.events: List[Event] = [
-            Event(e.time, e.name, e.switching_function, e.mode_before, e.mode_after, e.mode_before_name,
-                  e.mode_after_name)
-            for e in raw.events
-        ]
+        # Event objects are built on first access: a run with hundreds of switches would otherwise spend a
+        # fifth of a millisecond-long simulation making them (bench/compare.py measured it)
+        self._event_rows: List[tuple] = raw.event_rows
+        self._events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
         self.t_reached: float = float(raw.t_reached)
         self.period: Optional[float] = period
         for array in (self.t, self.states, self.friction_force, self.mode):
             array.setflags(write=False)  # shared views: a caller's edit must not corrupt the result
+
+    @property
+    def events(self) -> List[Event]:
+        """The event log: every located switch, in order."""
+        if self._events is None:
+            self._events = [Event(*row) for row in self._event_rows]
+        return self._events
 
     # ------------------------------------------------------------------ named access
     def __getitem__(self, name: str) -> np.ndarray:

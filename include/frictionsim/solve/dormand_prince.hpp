@@ -36,7 +36,7 @@ public:
         // rarely change, and Hairer's starting guess from one Euler step would ramp up from far below them. A
         // step too long for the new mode fails the error test once and shrinks.
         h_ = std::min(h_dense_accepted_, opt_.max_step);
-        facold_ = 1e-4;
+        log_facold_ = kLogFacoldMin;
         last_rejected_ = false;
         guards(t_, y_, g_);
         for (std::size_t i = 0; i < G; ++i) masked_[i] = g_[i] == 0.0;
@@ -99,6 +99,7 @@ private:
     // PI step-size control (Hairer's defaults: beta 0.04, safety 0.9, factor in [0.2, 10]).
     static constexpr double kBeta = 0.04, kExpo1 = 0.2 - 0.04 * 0.75, kSafety = 0.9;
     static constexpr double kFacMaxInv = 1.0 / 0.2, kFacMinInv = 1.0 / 10.0;
+    static constexpr double kLogFacoldMin = -9.210340371976184;  // log(1e-4)
 
     void rhs(double t, const State& x, State& dxdt) {
         sys_.rhs(t, x.data(), mode_, dxdt.data());
@@ -180,11 +181,14 @@ private:
             rc4_[i] = dy - h * k7_[i] - bspl;
             rc5_[i] = h * (d1 * k1_[i] + d3 * k3_[i] + d4 * k4_[i] + d5 * k5_[i] + d6 * k6_[i] + d7 * k7_[i]);
         }
-        double fac = std::pow(err, kExpo1) / std::pow(facold_, kBeta);
+        // err^expo1 / facold^beta as one exp of logs, facold's log kept from the last step (pow is ~10 % of a
+        // step on the axial rig otherwise)
+        const double log_err = std::log(err);
+        double fac = std::exp(kExpo1 * log_err - kBeta * log_facold_);
         fac = std::max(kFacMinInv, std::min(kFacMaxInv, fac / kSafety));
         double h_new = h / fac;
         if (last_rejected_) h_new = std::min(h_new, h);
-        facold_ = std::max(err, 1e-4);
+        log_facold_ = std::max(log_err, kLogFacoldMin);
         last_rejected_ = false;
         h_dense_ = h_dense_accepted_ = h;
         t_prev_ = t_;
@@ -291,7 +295,8 @@ private:
     const System& sys_;
     const SolverOptions& opt_;
     int mode_ = 0;
-    double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0, facold_ = 1e-4;
+    double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0;
+    double log_facold_ = kLogFacoldMin;  ///< log of the PI controller's previous error, at least log 1e-4
     double h_dense_accepted_ = 0.0;  ///< last accepted step, 0 before the first: the step after a restart
     bool last_rejected_ = false;
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
