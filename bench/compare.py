@@ -95,7 +95,7 @@ class AxialDahl:
                         output_times=[self.window_start, self.t_end])
         impulse = r["friction_impulse"]
         return {"mean_friction": (impulse[-1] - impulse[0]) / (self.t_end - self.window_start), "stats": r.stats,
-                "events": len(r.events)}
+                "events": r.stats["events"]}
 
 
 @dataclass(frozen=True)
@@ -129,7 +129,7 @@ class SpringBlock:
                         output_times=[self.t_end])
         return {"final_position": float(r["position"][-1]),
                 "mean_friction": float(r["friction_impulse"][-1]) / self.t_end, "stats": r.stats,
-                "events": len(r.events)}
+                "events": r.stats["events"]}
 
 
 A = AxialDahl()
