@@ -170,6 +170,42 @@ TEST_CASE("a guard that crosses zero and comes back within one step is located",
           Approx(5.0 * (1.0 - 4.0 * half_width)).margin(1e-9));
 }
 
+TEST_CASE("a reversal within one step is located when the guards come with the stages (rhs_guards)", "[solver]") {
+    // The same 0.63 ms dip, on a system that hands Dormand-Prince its guards with every stage (as the axial rig
+    // does): the stage values and the one dense point between stages 3 and 4 must see what the uniform scan saw.
+    auto v_r = [](double t) { return 1.0 - 1.001 * std::exp(-std::pow((t - 0.51) / 0.01, 2)); };
+    using Base = KinematicRig<Coulomb, decltype(v_r)>;
+    struct WithStageGuards : Base {
+        using Base::Base;
+        void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const {
+            rhs(t, x, mode, dxdt);
+            if (g != nullptr) guards(t, x, mode, g);
+        }
+    };
+    static_assert(detail::has_rhs_guards<WithStageGuards>::value);
+    for (double centre : {0.51, 0.5103, 0.5107, 0.5111, 0.5115}) {  // the dip at different places in its step
+        auto shifted = [centre](double t) { return 1.0 - 1.001 * std::exp(-std::pow((t - centre) / 0.01, 2)); };
+        using ShiftedBase = KinematicRig<Coulomb, decltype(shifted)>;
+        struct Shifted : ShiftedBase {
+            using ShiftedBase::ShiftedBase;
+            void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const {
+                this->rhs(t, x, mode, dxdt);
+                if (g != nullptr) this->guards(t, x, mode, g);
+            }
+        };
+        INFO("dip centred at t = " << centre);
+        const Shifted rig(Coulomb(0.5), shifted, ConstantSignal(10.0));
+        SolverOptions o = options_for(Method::dormand_prince);
+        o.max_step = 0.02;
+        const Result r = simulate(rig, 1.0, o);
+        const double half_width = 0.01 * std::sqrt(std::log(1.001));
+        REQUIRE(r.events.size() == 2);
+        CHECK(r.events[0].time == Approx(centre - half_width).margin(1e-10));
+        CHECK(r.events[1].time == Approx(centre + half_width).margin(1e-10));
+    }
+    (void)sizeof(WithStageGuards);
+}
+
 TEST_CASE("simultaneous switches are handled in one resolution", "[solver]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));

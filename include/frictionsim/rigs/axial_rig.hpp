@@ -96,10 +96,15 @@ public:
                weight_ * x[position];
     }
 
-    void rhs(double t, const double* x, int mode, double* dxdt) const {
+    void rhs(double t, const double* x, int mode, double* dxdt) const { rhs_guards(t, x, mode, dxdt, nullptr); }
+
+    /// The right-hand side and, into g unless null, the switching functions: one evaluation of the surface
+    /// motion for both (Dormand-Prince reads the guards at its stages from this).
+    void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const {
         const double v_r = x[velocity] - surface_velocity(t);
         const double f_drive = drive_force(t, x);
         const double f_stick = f_drive - weight_ - p_.mass * surface_acceleration(t);
+        if (g != nullptr) Switching::guards(law_, v_r, p_.normal_force, mode, f_stick, g);
         const double f_friction = Switching::force(law_, v_r, p_.normal_force, x + law_state, mode, f_stick);
         dxdt[position] = x[velocity];
         dxdt[velocity] = (f_drive - f_friction - weight_) / p_.mass;  // eq 6

@@ -10,6 +10,8 @@
 #include <cstddef>
 #include <limits>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "../error.hpp"
 #include "hybrid_system.hpp"
@@ -17,6 +19,17 @@
 #include "result.hpp"
 
 namespace frictionsim {
+
+namespace detail {
+/// Does S provide `void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const`, the
+/// right-hand side and the switching functions from one evaluation (e.g. one cos of the surface motion)?
+template <class S, class = void>
+struct has_rhs_guards : std::false_type {};
+template <class S>
+struct has_rhs_guards<S, std::void_t<decltype(std::declval<const S&>().rhs_guards(
+                             0.0, std::declval<const double*>(), 0, std::declval<double*>(), std::declval<double*>()))>>
+    : std::true_type {};
+}  // namespace detail
 
 template <class System>
 class DormandPrince {
@@ -82,6 +95,11 @@ private:
     // Dormand-Prince 5(4) tableau.
     /// Points per step (the end included) at which the guards are checked on the dense output.
     static constexpr int kScanPoints = 4;
+    /// With rhs_guards, the guards come free with the stages (c = 0.2, 0.3, 0.8, 8/9 and the end, exact there):
+    /// those values and one dense-output point in their widest gap (0.3 to 0.8) leave no gap over h/4, as the
+    /// uniform scan does, and the full scan runs only when one of them shows a crossing.
+    static constexpr bool kStageGuards = G > 0 && detail::has_rhs_guards<System>::value;
+    static constexpr double kGapPoint = 0.55;
     static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
     static constexpr double a21 = 1.0 / 5;
     static constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
@@ -104,6 +122,16 @@ private:
     void rhs(double t, const State& x, State& dxdt) {
         sys_.rhs(t, x.data(), mode_, dxdt.data());
         ++stats_.rhs_evaluations;
+    }
+    /// A stage: the right-hand side, and with rhs_guards the guards at the stage too (into g).
+    void stage(double t, const State& x, State& dxdt, std::array<double, G>& g) {
+        if constexpr (kStageGuards) {
+            sys_.rhs_guards(t, x.data(), mode_, dxdt.data(), g.data());
+            ++stats_.rhs_evaluations;
+        } else {
+            (void)g;
+            rhs(t, x, dxdt);
+        }
     }
     void guards(double t, const State& x, std::array<double, G>& g) {
         if constexpr (G > 0) {
@@ -147,20 +175,20 @@ private:
     // One trial step of size h from (t_, y_): fills k2..k7 and y1_, returns the scaled error norm.
     double attempt(double h) {
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * a21 * k1_[i];
-        rhs(t_ + c2 * h, ytmp_, k2_);
+        stage(t_ + c2 * h, ytmp_, k2_, stage_g_[0]);
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a31 * k1_[i] + a32 * k2_[i]);
-        rhs(t_ + c3 * h, ytmp_, k3_);
+        stage(t_ + c3 * h, ytmp_, k3_, stage_g_[1]);
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a41 * k1_[i] + a42 * k2_[i] + a43 * k3_[i]);
-        rhs(t_ + c4 * h, ytmp_, k4_);
+        stage(t_ + c4 * h, ytmp_, k4_, stage_g_[2]);
         for (std::size_t i = 0; i < N; ++i)
             ytmp_[i] = y_[i] + h * (a51 * k1_[i] + a52 * k2_[i] + a53 * k3_[i] + a54 * k4_[i]);
-        rhs(t_ + c5 * h, ytmp_, k5_);
+        stage(t_ + c5 * h, ytmp_, k5_, stage_g_[3]);
         for (std::size_t i = 0; i < N; ++i)
             ytmp_[i] = y_[i] + h * (a61 * k1_[i] + a62 * k2_[i] + a63 * k3_[i] + a64 * k4_[i] + a65 * k5_[i]);
         rhs(t_ + h, ytmp_, k6_);
         for (std::size_t i = 0; i < N; ++i)
             y1_[i] = y_[i] + h * (a71 * k1_[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
-        rhs(t_ + h, y1_, k7_);
+        stage(t_ + h, y1_, k7_, end_g_);  // with rhs_guards: the guards at the step's end, exactly
         double err = 0.0;
         for (std::size_t i = 0; i < N; ++i) {
             const double e =
@@ -208,8 +236,12 @@ private:
             return {t_, false};
         } else {
             std::array<double, G> g1{}, reference{}, g_lo{}, g_k{};
-            guards(t_, y_, g1);
+            if constexpr (kStageGuards) g1 = end_g_;
+            else guards(t_, y_, g1);
             for (std::size_t i = 0; i < G; ++i) reference[i] = reference_value(i, g1[i]);
+            if constexpr (kStageGuards) {
+                if (!crossing_seen(reference, g1)) return no_root(g1);
+            }
             double t_root = t_, lo = t_prev_;
             g_lo = reference;
             bool any = false;
@@ -230,13 +262,7 @@ private:
                 lo = t_k;
                 g_lo = g_k;
             }
-            if (!any) {
-                for (std::size_t i = 0; i < G; ++i) {
-                    if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
-                    g_[i] = g1[i];
-                }
-                return {t_, false};
-            }
+            if (!any) return no_root(g1);
             if (t_root < t_) {
                 interpolate(t_root, y_.data());
                 t_ = t_root;
@@ -249,6 +275,34 @@ private:
                                 : crossing(reference[i], g1[i], sys_.guard_direction(i, mode_));
             return {t_, true};
         }
+    }
+
+    StepResult no_root(const std::array<double, G>& g1) {
+        for (std::size_t i = 0; i < G; ++i) {
+            if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
+            g_[i] = g1[i];
+        }
+        return {t_, false};
+    }
+
+    // Any guard crossed from its reference at the step's end, at a stage of the accepted step, or at the dense
+    // output in the stages' widest gap? Only then is the full scan worth its guard evaluations.
+    bool crossing_seen(const std::array<double, G>& reference, const std::array<double, G>& g1) {
+        const auto crossed = [&](const std::array<double, G>& g) {
+            for (std::size_t i = 0; i < G; ++i) {
+                if (masked_[i] && reference[i] == 0.0) continue;
+                if (crossing(reference[i], g[i], sys_.guard_direction(i, mode_)) != 0) return true;
+            }
+            return false;
+        };
+        if (crossed(g1)) return true;
+        for (const auto& g : stage_g_)
+            if (crossed(g)) return true;
+        std::array<double, G> g_gap{};
+        const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
+        interpolate(t_gap, ytmp_.data());
+        guards(t_gap, ytmp_, g_gap);
+        return crossed(g_gap);
     }
 
     // The value a crossing of guard i is judged against. A guard masked since a restart (it sat at zero and the
@@ -297,7 +351,9 @@ private:
     int mode_ = 0;
     double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0;
     double log_facold_ = kLogFacoldMin;  ///< log of the PI controller's previous error, at least log 1e-4
-    double h_dense_accepted_ = 0.0;  ///< last accepted step, 0 before the first: the step after a restart
+    double h_dense_accepted_ = 0.0;
+    std::array<std::array<double, G>, 4> stage_g_{};  ///< guards at stages 2-5 (rhs_guards systems only)
+    std::array<double, G> end_g_{};                   ///< guards at (t + h, y1)  ///< last accepted step, 0 before the first: the step after a restart
     bool last_rejected_ = false;
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
     State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
