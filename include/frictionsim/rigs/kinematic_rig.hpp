@@ -49,8 +49,15 @@ public:
         return force(v_r_(t), normal_force(t), x, mode);
     }
 
-    void rhs(double t, const double* x, int mode, double* dxdt) const {
+    void rhs(double t, const double* x, int mode, double* dxdt) const { rhs_guards(t, x, mode, dxdt, nullptr); }
+
+    /// The right-hand side and, into g unless null, the switching function: one evaluation of the prescribed
+    /// signals for both (they may be Python callables).
+    void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const {
         const double v = v_r_(t), n = normal_force(t);
+        if constexpr (branches) {
+            if (g != nullptr) g[0] = mode * v;
+        }
         const double f = force(v, n, x, mode);
         if constexpr (Z > 0) law_.state_derivative(v, n, x + law_state, mode, dxdt + law_state);
         dxdt[friction_impulse] = f;

@@ -150,12 +150,19 @@ public:
                0.5 * p_.shaft_stiffness * x[shaft_twist] * x[shaft_twist];
     }
 
-    void rhs(double, const double* x, int mode, double* dxdt) const {
+    void rhs(double t, const double* x, int mode, double* dxdt) const { rhs_guards(t, x, mode, dxdt, nullptr); }
+
+    /// The right-hand side and, into g unless null, the switching functions, sharing the shaft and motor torques.
+    void rhs_guards(double, const double* x, int mode, double* dxdt, double* g) const {
         const double w2 = x[disc_speed], w3 = x[drive_speed], i = x[current];
         const double s = shaft_torque(x);
         const int disc_mode = disc_mode_of(mode);
         const DiscResponse disc = disc_.respond(w2, s, x + law_state, disc_mode, p_.disc_inertia);
         const double held = motor_holding_torque(x, s);
+        if (g != nullptr) {
+            disc_.guards(w2, s, x + law_state, disc_mode, p_.disc_inertia, g);
+            Motor::guards(motor_, w3, 1.0, motor_mode_of(mode), held, g + disc_guards);
+        }
         const double motor_friction = Motor::force(motor_, w3, 1.0, nullptr, motor_mode_of(mode), held);
         const double v = voltage(x);
         dxdt[disc_angle] = w2;
