@@ -442,7 +442,29 @@ class FrictionsimPython(Tool):
 
 
 # ---------------------------------------------------------------------------------------------- SciPy
-class Scipy(Tool):
+class PythonPeer(Tool):
+    """A peer driven from Python through ``_solve(rtol, atol, count_steps=False)``, which returns the scenario's
+    quantities with nfev, njev, events and steps (None where the tool reports none)."""
+
+    def run(self, k: int) -> Outcome:
+        t0 = time.perf_counter()
+        r = self._solve(rtol_of(k), ATOL_FACTOR * rtol_of(k))
+        seconds = time.perf_counter() - t0
+        return Outcome(k, {q: r[q] for q in self.scenario.quantities}, seconds, r.get("steps"), r["nfev"], r["njev"],
+                       r["events"])
+
+    def complete(self, outcome: Outcome) -> None:
+        """Steps of the axial run, where the timed run does not report them: the same solve, counting steps."""
+        if self.scenario is A and outcome.steps is None:
+            rtol = rtol_of(outcome.k)
+            outcome.steps = self._solve(rtol, ATOL_FACTOR * rtol, count_steps=True)["steps"]
+
+    def time(self, k: int, outcome: Outcome, settings: Settings) -> Timing:
+        rtol, atol = rtol_of(k), ATOL_FACTOR * rtol_of(k)
+        return best_time(lambda: self._solve(rtol, atol), settings, first=outcome.seconds)
+
+
+class Scipy(PythonPeer):
     family = "SciPy solve_ivp"
 
     def __init__(self, scenario, method: str) -> None:
@@ -489,22 +511,6 @@ class Scipy(Tool):
         return {"final_position": float(y[0]), "mean_friction": float(y[2]) / B.t_end, "nfev": nfev, "njev": njev,
                 "events": events, "steps": steps}
 
-    def run(self, k: int) -> Outcome:
-        t0 = time.perf_counter()
-        r = self._solve(rtol_of(k), ATOL_FACTOR * rtol_of(k))
-        seconds = time.perf_counter() - t0
-        return Outcome(k, {q: r[q] for q in self.scenario.quantities}, seconds, r.get("steps"), r["nfev"], r["njev"],
-                       r["events"])
-
-    def complete(self, outcome: Outcome) -> None:
-        """Steps of the axial run: the same steps without t_eval (t_eval does not change SciPy's step choice)."""
-        if self.scenario is A and outcome.steps is None:
-            rtol = rtol_of(outcome.k)
-            outcome.steps = self._solve(rtol, ATOL_FACTOR * rtol, count_steps=True)["steps"]
-
-    def time(self, k: int, outcome: Outcome, settings: Settings) -> Timing:
-        rtol, atol = rtol_of(k), ATOL_FACTOR * rtol_of(k)
-        return best_time(lambda: self._solve(rtol, atol), settings, first=outcome.seconds)
 
 
 # ---------------------------------------------------------------------------------------------- scikit-sundae
@@ -516,7 +522,7 @@ def _sksundae_version() -> Optional[str]:
     return f"{sksundae.__version__} (SUNDIALS {getattr(sksundae, 'SUNDIALS_VERSION', '?')})"
 
 
-class SciKitSundae(Tool):
+class SciKitSundae(PythonPeer):
     family = "scikit-sundae"
 
     def __init__(self, scenario, method: str) -> None:
@@ -568,21 +574,6 @@ class SciKitSundae(Tool):
         return {"final_position": float(y[0]), "mean_friction": float(y[2]) / B.t_end, "nfev": nfev, "njev": njev,
                 "events": events, "steps": steps}
 
-    def run(self, k: int) -> Outcome:
-        t0 = time.perf_counter()
-        r = self._solve(rtol_of(k), ATOL_FACTOR * rtol_of(k))
-        seconds = time.perf_counter() - t0
-        return Outcome(k, {q: r[q] for q in self.scenario.quantities}, seconds, r.get("steps"), r["nfev"], r["njev"],
-                       r["events"])
-
-    def complete(self, outcome: Outcome) -> None:
-        if self.scenario is A and outcome.steps is None:
-            rtol = rtol_of(outcome.k)
-            outcome.steps = self._solve(rtol, ATOL_FACTOR * rtol, count_steps=True)["steps"]
-
-    def time(self, k: int, outcome: Outcome, settings: Settings) -> Timing:
-        rtol, atol = rtol_of(k), ATOL_FACTOR * rtol_of(k)
-        return best_time(lambda: self._solve(rtol, atol), settings, first=outcome.seconds)
 
 
 def _sb_events_stick(t, y, events):
