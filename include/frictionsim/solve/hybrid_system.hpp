@@ -17,6 +17,10 @@
 //   std::array<const char*, state_size> state_names() const;
 //   double friction_force(double t, const double* x, int mode) const;   // for recording
 //   std::array<double, state_size> initial_state() const;                // used by simulate()
+// and optionally
+//   void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const;  // both from one evaluation:
+//        Dormand-Prince then checks the guards at its stages instead of extra dense-output points
+//   void jacobian(double t, const double* x, int mode, double* J) const;  // column-major d(rhs)/dx, for CVODE
 //
 // An Integrator<S> provides
 //   Integrator(const S& system, const SolverOptions& options);
