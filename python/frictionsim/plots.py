@@ -223,8 +223,8 @@ def phase_portrait_figure(traces: Sequence, *, title: str = "", window: Window =
                           equilibria: Optional[Sequence[Optional[Tuple[float, float]]]] = None,
                           natural_frequency: Optional[float] = None):
     """Phase portrait of the disc (paper 001 Fig. 7b): disc speed w2 [rad/s] against the shaft twist th3 - th2
-    [rad], one closed curve per trace in a limit cycle. ``equilibria``: per trace (twist, w_ref) of steady
-    rotation, marked x (None: no marker)."""
+    [rad], one closed curve per trace in a limit cycle. ``equilibria``: per trace the operating point
+    (mean twist, w_ref), marked x (None: no marker)."""
     figure, ax = _figure(width=10.0, height=5.5)
     for i, (label, frame) in enumerate(traces):
         part = _window(frame, window)
@@ -233,7 +233,7 @@ def phase_portrait_figure(traces: Sequence, *, title: str = "", window: Window =
             ax.plot(*equilibria[i], marker="x", markersize=9, markeredgewidth=2, color=line.get_color(),
                     linestyle="none")
     if equilibria is not None and any(e is not None for e in equilibria):
-        ax.plot([], [], marker="x", color="0.3", linestyle="none", label="steady rotation at $\\omega_{ref}$")
+        ax.plot([], [], marker="x", color="0.3", linestyle="none", label="operating point: mean twist, $\\omega_{ref}$")
     ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel("shaft twist $\\theta_3 - \\theta_2$ [rad]")
     ax.set_ylabel("disc speed $\\omega_2$ [rad/s]")

@@ -27,7 +27,9 @@ Plots (``output.plots``; ``output.plot_window`` = [t_start, t_end] overrides eve
     limit cycle both it and w2 are periodic, so the portrait closes (the absolute angle th2 grows without
     bound; th2 - w_ref t is nearly the mirror image of the twist, since the PI loop holds th3 close to w_ref t).
     Sticking shows as the flat stretch along w2 = 0, where the twist grows at w3 ~ w_ref until the
-    break-away torque is reached; the equilibrium of steady rotation (w_ref, twist = T_f2(w_ref) / k2) is marked.
+    break-away torque is reached. The operating point (mean twist, w_ref) is marked: over whole cycles the mean
+    shaft torque equals the mean friction torque, so the mean twist is mean T_f2 / k2 (for steady rotation, the
+    equilibrium itself).
 """
 
 from __future__ import annotations
@@ -222,27 +224,18 @@ def write_plots(runs: Sequence[TorsionalCaseRun], traces: Sequence, plots_wanted
         elif plot == "friction_torque_hysteresis":
             figure = plots.friction_torque_hysteresis_figure(traces, title=title, window=windows[plot])
         else:
-            equilibria = [_steady_twist(run) for run in runs]
+            equilibria = [_operating_point(run) for run in runs]
             figure = plots.phase_portrait_figure(traces, title=title, window=windows[plot], equilibria=equilibria,
                                                  natural_frequency=float(first.natural_frequency))
         written.append(plots.save(figure, directory / f"{plot}.png"))
     return written
 
 
-def _steady_twist(run: TorsionalCaseRun) -> Optional[Tuple[float, float]]:
-    """(twist [rad], w_ref [rad/s]) of steady rotation at w_ref (w2 = w3 = w_ref, no acceleration):
-    k2 twist = T_f2(w_ref); None for a law without a steady level here."""
-    law, rig = run.rig.friction, run.rig
-    w, normal, radius = run.reference_speed, run.normal_force, float(rig.contact_radius)
-    if isinstance(law, _core.HystereticFriction):
-        torque = float(law.torque(w, 0.0, normal))
-    elif isinstance(law, _core.Stribeck):
-        torque = radius * float(law.slip_force(radius * w, normal, 1 if w >= 0 else -1))
-    elif isinstance(law, _core.LuGre):
-        v = radius * w
-        torque = radius * (math.copysign(float(law.stribeck_level(v, normal)), v) + float(law.viscous_damping) * v)
-    elif isinstance(law, (_core.Coulomb, _core.Dahl)):
-        torque = radius * math.copysign(float(law.mu) * normal, w)
-    else:
+def _operating_point(run: TorsionalCaseRun) -> Optional[Tuple[float, float]]:
+    """(twist [rad], w_ref [rad/s]) about which the disc moves: mean T_f2 / k2 over the measured window (the
+    mean of S = k2 twist + d2 (w3 - w2) is the mean friction torque, and w3 - w2 averages to zero over whole
+    cycles). Derived from the run, so it holds for every law; None when the window holds too few samples."""
+    torque = run.mean_friction_torque
+    if not math.isfinite(torque):
         return None
-    return (torque / float(rig.shaft_stiffness), w) if math.isfinite(torque) else None
+    return torque / float(run.rig.shaft_stiffness), run.reference_speed

@@ -101,9 +101,8 @@ public:
     /// Recorded mode = disc mode + 16 (motor mode - 1): the disc's mode while the motor turns forwards.
     static int encode_mode(int disc_mode, int motor_mode) { return disc_mode + 16 * (motor_mode - 1); }
     static int disc_mode_of(int mode) { return mode - 16 * (motor_mode_of(mode) - 1); }
-    static int motor_mode_of(int mode) {
-        return 1 + static_cast<int>(std::floor((mode + 8) / 16.0));
-    }
+    /// 1 + floor((mode + 8) / 16) in integers: recorded modes are >= -40, so mode + 56 is positive.
+    static int motor_mode_of(int mode) { return (mode + 56) / 16 - 2; }
 
     TorsionalRig(const TorsionalRigParams& p, Law law) : p_(validated(p)), disc_(std::move(law), p.contact_radius, p.normal_force) {
         const double eta = p_.gear_ratio;
@@ -156,14 +155,11 @@ public:
     void rhs_guards(double, const double* x, int mode, double* dxdt, double* g) const {
         const double w2 = x[disc_speed], w3 = x[drive_speed], i = x[current];
         const double s = shaft_torque(x);
-        const int disc_mode = disc_mode_of(mode);
+        const int disc_mode = disc_mode_of(mode), motor_mode = motor_mode_of(mode);
         const DiscResponse disc = disc_.respond(w2, s, x + law_state, disc_mode, p_.disc_inertia);
         const double held = motor_holding_torque(x, s);
-        if (g != nullptr) {
-            disc_.guards(w2, s, x + law_state, disc_mode, p_.disc_inertia, g);
-            Motor::guards(motor_, w3, 1.0, motor_mode_of(mode), held, g + disc_guards);
-        }
-        const double motor_friction = Motor::force(motor_, w3, 1.0, nullptr, motor_mode_of(mode), held);
+        if (g != nullptr) fill_guards(x, disc_mode, motor_mode, s, held, g);
+        const double motor_friction = Motor::force(motor_, w3, 1.0, nullptr, motor_mode, held);
         const double v = voltage(x);
         dxdt[disc_angle] = w2;
         dxdt[disc_speed] = disc.acceleration;
@@ -238,8 +234,7 @@ public:
 
     void guards(double, const double* x, int mode, double* g) const {
         const double s = shaft_torque(x);
-        disc_.guards(x[disc_speed], s, x + law_state, disc_mode_of(mode), p_.disc_inertia, g);
-        Motor::guards(motor_, x[drive_speed], 1.0, motor_mode_of(mode), motor_holding_torque(x, s), g + disc_guards);
+        fill_guards(x, disc_mode_of(mode), motor_mode_of(mode), s, motor_holding_torque(x, s), g);
     }
     int guard_direction(std::size_t i, int mode) const {
         return i < disc_guards ? disc_.guard_direction(i, disc_mode_of(mode)) : -1;
@@ -323,6 +318,12 @@ private:
         detail::require_finite(who, "initial_disc_speed", p.initial_disc_speed);
         detail::require_finite(who, "initial_drive_speed", p.initial_drive_speed);
         return p;
+    }
+
+    /// The disc's guards, then the motor's, at shaft torque s and motor holding torque `held`.
+    void fill_guards(const double* x, int disc_mode, int motor_mode, double s, double held, double* g) const {
+        disc_.guards(x[disc_speed], s, x + law_state, disc_mode, p_.disc_inertia, g);
+        Motor::guards(motor_, x[drive_speed], 1.0, motor_mode, held, g + disc_guards);
     }
 
     /// Torque (load side) that the motor's friction must supply to hold dw3/dt = 0.

@@ -254,8 +254,7 @@ private:
                     guards(t_k, ytmp_, g_k);
                 }
                 for (std::size_t i = 0; i < G; ++i) {
-                    if (masked_[i] && reference[i] == 0.0) continue;  // still on its surface
-                    if (crossing(reference[i], g_k[i], sys_.guard_direction(i, mode_)) == 0) continue;
+                    if (crossed(i, reference[i], g_k[i]) == 0) continue;
                     any = true;
                     t_root = std::min(t_root, bracket_root(i, reference[i], lo, t_k, g_lo[i], g_k[i]));
                 }
@@ -269,10 +268,7 @@ private:
                 guards(t_, y_, g1);
                 rhs(t_, y_, k1_);
             }
-            for (std::size_t i = 0; i < G; ++i)
-                roots_[i] = masked_[i] && reference[i] == 0.0
-                                ? 0
-                                : crossing(reference[i], g1[i], sys_.guard_direction(i, mode_));
+            for (std::size_t i = 0; i < G; ++i) roots_[i] = crossed(i, reference[i], g1[i]);
             return {t_, true};
         }
     }
@@ -288,21 +284,26 @@ private:
     // Any guard crossed from its reference at the step's end, at a stage of the accepted step, or at the dense
     // output in the stages' widest gap? Only then is the full scan worth its guard evaluations.
     bool crossing_seen(const std::array<double, G>& reference, const std::array<double, G>& g1) {
-        const auto crossed = [&](const std::array<double, G>& g) {
-            for (std::size_t i = 0; i < G; ++i) {
-                if (masked_[i] && reference[i] == 0.0) continue;
-                if (crossing(reference[i], g[i], sys_.guard_direction(i, mode_)) != 0) return true;
-            }
+        const auto any_crossed = [&](const std::array<double, G>& g) {
+            for (std::size_t i = 0; i < G; ++i)
+                if (crossed(i, reference[i], g[i]) != 0) return true;
             return false;
         };
-        if (crossed(g1)) return true;
+        if (any_crossed(g1)) return true;
         for (const auto& g : stage_g_)
-            if (crossed(g)) return true;
+            if (any_crossed(g)) return true;
         std::array<double, G> g_gap{};
         const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
         interpolate(t_gap, ytmp_.data());
         guards(t_gap, ytmp_, g_gap);
-        return crossed(g_gap);
+        return any_crossed(g_gap);
+    }
+
+    /// Guard i's crossing (+1 rising, -1 falling, 0 none) from `reference` to `value`; a masked guard that has
+    /// not left its surface (reference 0) does not cross.
+    int crossed(std::size_t i, double reference, double value) const {
+        if (masked_[i] && reference == 0.0) return 0;
+        return crossing(reference, value, sys_.guard_direction(i, mode_));
     }
 
     // The value a crossing of guard i is judged against. A guard masked since a restart (it sat at zero and the

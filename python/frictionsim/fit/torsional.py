@@ -22,6 +22,8 @@ from scipy.signal import savgol_filter
 
 from .._core import HystereticFriction
 from ..errors import InvalidParameterError
+from ..signal import _sampling_rate
+from .validation import _time, _vector
 
 __all__ = ["FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
            "fit_hysteretic_friction"]
@@ -48,21 +50,6 @@ def _integer(function: str, name: str, value: Any, minimum: int, why: str) -> in
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
         _reject(function, name, f"must be an integer >= {minimum}{why} (got {value!r})")
     return int(value)
-
-
-def _signal(function: str, name: str, value: Any, like: Optional[Tuple[str, int]] = None) -> np.ndarray:
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        _reject(function, name, "must be a 1-D array of numbers")
-    if array.ndim != 1:
-        _reject(function, name, f"must be a 1-D array (got shape {array.shape})")
-    if like is not None and array.size != like[1]:
-        _reject(function, name, f"must have as many samples as {like[0]} ({like[1]}); got {array.size}")
-    if not np.all(np.isfinite(array)):
-        bad = int(np.flatnonzero(~np.isfinite(array))[0])
-        _reject(function, name, f"must be finite (sample {bad} is {array[bad]})")
-    return array
 
 
 def _frozen(array: np.ndarray) -> np.ndarray:
@@ -124,21 +111,13 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
     record, polyorder < 2, J2 <= 0, k2 <= 0, d2 < 0.
     """
     fn = "estimate_friction_torque"
-    t = _signal(fn, "t", t)
+    t = _time(t)  # finite, strictly increasing
     if t.size < 5:
         _reject(fn, "t", f"must hold at least 5 samples (got {t.size})")
-    th2 = _signal(fn, "disc_angle", disc_angle, ("t", t.size))
-    th3 = _signal(fn, "drive_angle", drive_angle, ("t", t.size))
-    steps = np.diff(t)
-    if not np.all(steps > 0.0):
-        bad = int(np.flatnonzero(~(steps > 0.0))[0]) + 1
-        _reject(fn, "t", f"must be strictly increasing (t[{bad}] = {t[bad]} after {t[bad - 1]})")
+    th2 = _vector("disc_angle", disc_angle, t.size)
+    th3 = _vector("drive_angle", drive_angle, t.size)
+    _sampling_rate(fn, t, 1e-4)  # Savitzky-Golay needs steps equal to within 1e-4
     dt = (t[-1] - t[0]) / (t.size - 1)
-    jitter = np.abs(steps - dt)
-    if np.any(jitter > 1e-4 * dt + 64 * np.finfo(float).eps * np.abs(t[1:])):
-        bad = int(np.argmax(jitter)) + 1
-        _reject(fn, "t", f"must be uniformly sampled (the step to t[{bad}], {steps[bad - 1]:.9g} s, differs from the "
-                         f"mean step {dt:.9g} s by more than 1e-4 of it); resample first, e.g. with np.interp")
     j2 = _number(fn, "disc_inertia", disc_inertia)
     k2 = _number(fn, "shaft_stiffness", shaft_stiffness)
     d2 = _number(fn, "shaft_damping", shaft_damping, allow_zero=True)
@@ -298,11 +277,11 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     a negative guard, no stick phase, fewer than 6 samples (or a rank-deficient design) in a branch.
     """
     fn = "fit_hysteretic_friction"
-    w = _signal(fn, "disc_speed", disc_speed)
+    w = _vector("disc_speed", disc_speed)
     if w.size == 0:
         _reject(fn, "disc_speed", "must not be empty")
-    al = _signal(fn, "disc_acceleration", disc_acceleration, ("disc_speed", w.size))
-    torque = _signal(fn, "friction_torque", friction_torque, ("disc_speed", w.size))
+    al = _vector("disc_acceleration", disc_acceleration, w.size, like="disc_speed")
+    torque = _vector("friction_torque", friction_torque, w.size, like="disc_speed")
     w_s = _number(fn, "stick_speed", stick_speed)
     guard = _integer(fn, "guard", guard, 0, " (samples)")
     if 2 * guard + 1 > w.size:

@@ -21,8 +21,8 @@ def _reject(message: str, parameter: str) -> NoReturn:
     raise InvalidParameterError(message, parameter)
 
 
-def _vector(name: str, value: Any, n: Optional[int] = None) -> np.ndarray:
-    """A finite 1-D float array (of ``n`` samples when given)."""
+def _vector(name: str, value: Any, n: Optional[int] = None, like: str = "t") -> np.ndarray:
+    """A finite 1-D float array (of ``n`` samples, as many as ``like`` has, when given)."""
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -30,7 +30,7 @@ def _vector(name: str, value: Any, n: Optional[int] = None) -> np.ndarray:
     if array.ndim != 1:
         _reject(f"{name} must be a 1-D array (got shape {array.shape})", name)
     if n is not None and array.size != n:
-        _reject(f"{name} must have as many samples as t ({n}); got {array.size}", name)
+        _reject(f"{name} must have as many samples as {like} ({n}); got {array.size}", name)
     if not np.all(np.isfinite(array)):
         bad = int(np.flatnonzero(~np.isfinite(array))[0])
         _reject(f"{name} must be finite (sample {bad} is {array[bad]})", name)
