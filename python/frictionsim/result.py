@@ -60,9 +60,11 @@ class Result:
         self.state_names: List[str] = list(raw.state_names)
         self.friction_force: np.ndarray = raw.friction_force
         self.mode: np.ndarray = raw.mode
-        # Event objects are built on first access: a run with hundreds of switches would otherwise spend a
-        # fifth of a millisecond-long simulation making them (bench/compare.py measured it)
-        self._event_rows: List[tuple] = raw.event_rows
+        # The event log is read out of the engine's result on first access (or when pickled): a run with
+        # hundreds of switches would otherwise spend 2 % of a millisecond-long simulation making its tuples
+        # and Event objects (bench/compare.py measured it)
+        self._raw: Optional["_core.RawResult"] = raw
+        self._event_rows: Optional[List[tuple]] = None
         self._events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
@@ -75,8 +77,18 @@ class Result:
     def events(self) -> List[Event]:
         """The event log: every located switch, in order."""
         if self._events is None:
-            self._events = [Event(*row) for row in self._event_rows]
+            self._events = [Event(*row) for row in self._rows()]
         return self._events
+
+    def _rows(self) -> List[tuple]:
+        if self._event_rows is None:
+            self._event_rows = self._raw.event_rows
+            self._raw = None  # the arrays are copies already: the engine's result is no longer needed
+        return self._event_rows
+
+    def __getstate__(self) -> dict:
+        self._rows()  # the engine's result does not pickle: hand over its event log instead
+        return self.__dict__.copy()
 
     # ------------------------------------------------------------------ named access
     def __getitem__(self, name: str) -> np.ndarray:
