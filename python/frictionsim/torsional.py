@@ -133,10 +133,10 @@ def simulate_fig7(friction=None, t_end: float = 40.0, *, sample_time: float = 1e
 
     rig = TorsionalRig(fig7_friction() if friction is None else friction, **rig_params)
     if not (np.isfinite(t_end) and t_end > 0):
-        raise InvalidParameterError("t_end", f"simulate_fig7: t_end must be positive and finite (got {t_end!r})")
+        raise InvalidParameterError(f"simulate_fig7: t_end must be positive and finite (got {t_end!r})", "t_end")
     if not (np.isfinite(sample_time) and 0 < sample_time <= t_end):
-        raise InvalidParameterError("sample_time",
-                                    f"simulate_fig7: sample_time must be in (0, t_end] (got {sample_time!r})")
+        raise InvalidParameterError(f"simulate_fig7: sample_time must be in (0, t_end] (got {sample_time!r})",
+                                    "sample_time")
     n = int(np.floor(t_end / sample_time * (1 + 1e-12)))  # samples at k dt up to t_end; t_end itself too
     times = np.minimum(np.arange(n + 1) * sample_time, t_end)
     if times[-1] < t_end:

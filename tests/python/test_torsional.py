@@ -459,8 +459,12 @@ def test_disc_acceleration_rejects_unknown_mode_codes():
 def test_simulate_fig7_ends_at_t_end_whatever_the_sample_time():
     _, result = fs.torsional.simulate_fig7(t_end=1.0006, sample_time=1e-3)
     assert result.t[-1] == pytest.approx(1.0006) and np.all(np.diff(result.t) > 0)
-    with pytest.raises(ValueError, match="sample_time"):
+    with pytest.raises(fs.InvalidParameterError, match="sample_time") as info:
         fs.torsional.simulate_fig7(t_end=1.0, sample_time=0.0)
+    assert info.value.parameter == "sample_time"
+    with pytest.raises(fs.InvalidParameterError, match="t_end") as info:
+        fs.torsional.simulate_fig7(t_end=-1.0)
+    assert info.value.parameter == "t_end"
 
 
 def test_stick_slip_map_marks_failed_points():
