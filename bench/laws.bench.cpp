@@ -5,7 +5,7 @@
 //                           stick), and for paper 001's eq 6 DiscContact<HystereticFriction>::respond (the
 //                           per-branch implicit solve, branch_equation(...).root());
 //   <Law>/state_derivative  dz/dt of the law's internal state. Registered only for laws with a state (Dahl,
-//                           LuGre): a law without state has no such call, and no row is better than a row that
+//                           LuGre, elasto-plastic): a law without state has no such call, and no row is better than a row that
 //                           times a no-op;
 //   <Law>/guards            the switching functions the event loop evaluates after every step. Registered only for
 //                           laws with guards: LuGre is smooth and has none.
@@ -29,6 +29,7 @@
 
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/friction/dahl.hpp>
+#include <frictionsim/friction/elasto_plastic.hpp>
 #include <frictionsim/friction/hysteretic.hpp>
 #include <frictionsim/friction/lugre.hpp>
 #include <frictionsim/friction/stribeck.hpp>
@@ -81,6 +82,9 @@ inline double deflection_scale(const Dahl& law, double normal_force) {
     return law.friction_coefficient() * normal_force / law.tangential_stiffness();
 }
 inline double deflection_scale(const LuGre& law, double normal_force) {
+    return law.params().static_coefficient * normal_force / law.params().bristle_stiffness;
+}
+inline double deflection_scale(const ElastoPlastic& law, double normal_force) {  // spans all three regimes
     return law.params().static_coefficient * normal_force / law.params().bristle_stiffness;
 }
 template <class Law>
@@ -214,6 +218,7 @@ int register_all() {
     register_law("Dahl_alpha1", SwitchingContact<Dahl>(Dahl(0.41, 4e4, 1.0)));
     register_law("Dahl_alpha0.5", SwitchingContact<Dahl>(Dahl(0.41, 4e4, 0.5)));
     register_law("LuGre", SwitchingContact<LuGre>(LuGre(LuGre::Params{})));
+    register_law("ElastoPlastic", SwitchingContact<ElastoPlastic>(ElastoPlastic(ElastoPlastic::Params{})));
     const HystereticContact hysteretic;
     const std::vector<Sample> samples = register_law("Hysteretic", hysteretic);
     benchmark::RegisterBenchmark("Hysteretic/torque", [=](benchmark::State& state) {

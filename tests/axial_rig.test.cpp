@@ -50,6 +50,12 @@ TEST_CASE("axial rig energy balance: drive work = kinetic + spring (+ potential)
         lp.static_coefficient = 0.45;
         check_energy_balance(AxialRig<LuGre>(p, LuGre(lp)), method, 0.1);
     }
+    SECTION("elasto-plastic") {
+        ElastoPlastic::Params ep;
+        ep.coulomb_coefficient = 0.41;
+        ep.static_coefficient = 0.45;
+        check_energy_balance(AxialRig<ElastoPlastic>(p, ElastoPlastic(ep)), method, 0.1);
+    }
 }
 
 TEST_CASE("axial rig: vertical rig starts in equilibrium with the spring carrying the weight", "[axial_rig]") {

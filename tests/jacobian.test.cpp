@@ -74,6 +74,13 @@ TEST_CASE("axial rig Jacobian: analytic = central differences of the right-hand 
         lp.stribeck_velocity = 0.1;
         check_axial(LuGre(lp), {0});
     }
+    SECTION("elasto-plastic: elastic, transition and LuGre regimes (z_ba = 1.8e-4 m, z_max >= 3.7e-4 m)") {
+        ElastoPlastic::Params ep;
+        ep.coulomb_coefficient = 0.41;
+        ep.static_coefficient = 0.45;
+        ep.stribeck_velocity = 0.1;
+        check_axial(ElastoPlastic(ep), {slip_negative, slip_positive});
+    }
 }
 
 TEST_CASE("kinematic rig Jacobian: analytic = central differences (the law's states)", "[jacobian][kinematic_rig]") {
@@ -84,10 +91,17 @@ TEST_CASE("kinematic rig Jacobian: analytic = central differences (the law's sta
     lp.stribeck_velocity = 0.1;
     const KinematicRig<LuGre, HarmonicSlidingVelocity> lugre(LuGre(lp), v, ConstantSignal(90.0));
     const KinematicRig<Dahl, HarmonicSlidingVelocity> dahl(Dahl(0.41, 4e4), v, ConstantSignal(90.0));
+    ElastoPlastic::Params ep;
+    ep.coulomb_coefficient = 0.41;
+    ep.static_coefficient = 0.45;
+    ep.stribeck_velocity = 0.1;
+    const KinematicRig<ElastoPlastic, HarmonicSlidingVelocity> elasto_plastic(ElastoPlastic(ep), v,
+                                                                              ConstantSignal(90.0));
     for (double t : {0.003, 0.011, 0.02, 0.041}) {
-        for (double z : {-4e-4, 1e-5, 6e-4}) {
+        for (double z : {-4e-4, 1e-5, 2.5e-4, 6e-4}) {
             check_jacobian(lugre, t, {z, 0.1, 0.01}, 0);
             check_jacobian(dahl, t, {z, 0.1, 0.01}, sign_of(v(t)));
+            check_jacobian(elasto_plastic, t, {z, 0.1, 0.01}, sign_of(v(t)));
         }
     }
 }
@@ -128,6 +142,10 @@ TEST_CASE("torsional rig Jacobian: analytic = central differences, every disc an
     SECTION("Dahl") { check_torsional(Dahl(0.2714, 1e4), {slip_negative, slip_positive}); }
     SECTION("LuGre") {
         check_torsional(LuGre(LuGre::Params{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0}), {0});
+    }
+    SECTION("elasto-plastic") {
+        check_torsional(ElastoPlastic(ElastoPlastic::Params{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0, 0.5}),
+                        {slip_negative, slip_positive});
     }
     SECTION("eq 6: stick band, both branches on both sides, hold") {
         HystereticFriction::Params hp = paper001_fig7_friction().params();

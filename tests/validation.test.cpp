@@ -169,6 +169,21 @@ TEST_CASE("LuGre rejects every non-physical parameter, naming it", "[validation]
     CHECK_NOTHROW(LuGre(edge));
 }
 
+TEST_CASE("ElastoPlastic rejects every non-physical parameter, naming it", "[validation][elasto_plastic]") {
+    const ElastoPlastic::Params ok{};
+    const auto make = [](const ElastoPlastic::Params& p) { (void)ElastoPlastic(p); };
+    using P = ElastoPlastic::Params;
+    check_rules({
+        {"coulomb_coefficient", not_positive, with(ok, &P::coulomb_coefficient, make)},
+        {"static_coefficient", {0.99, 0.0, -1.0, kNaN, kInf, -kInf}, with(ok, &P::static_coefficient, make)},
+        {"stribeck_velocity", not_positive, with(ok, &P::stribeck_velocity, make)},
+        {"bristle_stiffness", not_positive, with(ok, &P::bristle_stiffness, make)},
+        {"bristle_damping", negative_or_nonfinite, with(ok, &P::bristle_damping, make)},
+        {"viscous_damping", negative_or_nonfinite, with(ok, &P::viscous_damping, make)},
+        {"breakaway_fraction", {-0.1, 1.0, 1.5, kNaN, kInf, -kInf}, with(ok, &P::breakaway_fraction, make)},
+    });
+}
+
 #ifdef FRICTIONSIM_TEST_POWER_LAW
 TEST_CASE("power-law coefficient rejects non-physical parameters, naming them", "[validation][power_law]") {
     const PowerLawCoefficient law({0.2, -0.2});

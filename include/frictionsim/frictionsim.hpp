@@ -8,6 +8,7 @@
 #include "error.hpp"
 #include "friction/coulomb.hpp"
 #include "friction/dahl.hpp"
+#include "friction/elasto_plastic.hpp"
 #include "friction/hysteretic.hpp"
 #include "friction/lugre.hpp"
 #include "friction/power_law.hpp"
