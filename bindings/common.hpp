@@ -18,7 +18,7 @@ namespace py = pybind11;
 
 /// Every instantaneous friction law a rig can run with. One variant alternative per law: the rigs are
 /// instantiated once per law, the right-hand side stays free of virtual calls.
-using FrictionLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre>;
+using FrictionLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic>;
 
 /// The Python object (a bound law) -> the variant; TypeError naming `parameter` for anything else.
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter);

@@ -184,11 +184,11 @@ friction_work int F v_r dt [J].
 
 Parameters
 ----------
-friction : Coulomb | Stribeck (no Karnopp band) | Dahl | LuGre
+friction : Coulomb | Stribeck (no Karnopp band) | Dahl | LuGre | ElastoPlastic
 relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewise linear)
 normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
 initial_state : sequence of float, optional
-    The law's initial state (z0 [m] for Dahl and LuGre); default zero.
+    The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
 )doc")
         .def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("relative_velocity"),
              py::arg("normal_force"), py::arg("initial_state") = py::none())

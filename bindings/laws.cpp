@@ -1,6 +1,6 @@
-// Friction laws for Python: Coulomb, Stribeck (Karnopp band optional), Dahl, LuGre, and the cycle-averaged
-// power-law coefficient of paper 000 (eq 17, Table 5). Keyword names follow the papers' symbols where Python
-// users read them (mu, mu_static); every law pickles, so rigs can go to process pools and dask workers.
+// Friction laws for Python: Coulomb, Stribeck (Karnopp band optional), Dahl, LuGre, elasto-plastic, and the
+// cycle-averaged power-law coefficient of paper 000 (eq 17, Table 5). Keyword names follow the papers' symbols
+// where Python users read them (mu, mu_static); every law pickles, so rigs can go to process pools and dask workers.
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -65,7 +65,9 @@ FrictionLaw friction_law_from_python(py::handle law, const char* parameter) {
     if (py::isinstance<Stribeck>(law)) return law.cast<Stribeck>();
     if (py::isinstance<Dahl>(law)) return law.cast<Dahl>();
     if (py::isinstance<LuGre>(law)) return law.cast<LuGre>();
-    std::string message = std::string(parameter) + " must be a friction law (Coulomb, Stribeck, Dahl or LuGre), got " +
+    if (py::isinstance<ElastoPlastic>(law)) return law.cast<ElastoPlastic>();
+    std::string message = std::string(parameter) +
+                          " must be a friction law (Coulomb, Stribeck, Dahl, LuGre or ElastoPlastic), got " +
                           std::string(py::str(py::type::of(law).attr("__name__")));
     if (py::isinstance<PowerLawCoefficient>(law))
         message += ": a PowerLawCoefficient is a cycle-averaged coefficient, not an instantaneous law; use "
@@ -244,6 +246,82 @@ viscous_damping : float
             [](const py::tuple& t) {
                 return LuGre(LuGre::Params{t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(),
                                            t[3].cast<double>(), t[4].cast<double>(), t[5].cast<double>()});
+            }));
+
+    py::class_<ElastoPlastic>(m, "ElastoPlastic", R"doc(
+Elasto-plastic friction (Dupont, Hayward, Armstrong & Altpeter 2002): LuGre with a purely elastic presliding
+regime, so that small oscillations below break-away do not drift (LuGre creeps under them):
+
+    dz/dt = v_r (1 - alpha(z, v_r) z / z_ss(v_r)),   z_ss(v) = sgn(v) g(v) / sigma0,
+    g(v)  = F_N [mu + (mu_static - mu) exp(-(v/v_s)^2)],
+    F     = sigma0 z + sigma1 dz/dt + sigma2 v_r,
+
+    alpha = 0                                            |z| <= z_ba, or sgn(z) != sgn(v_r) (elastic)
+          = 1/2 + 1/2 sin(pi (|z| - z_m) / (z_max - z_ba))   z_ba < |z| < z_max,  z_m = (z_max + z_ba) / 2
+          = 1                                            |z| >= z_max = g(v_r) / sigma0 (LuGre)
+
+with the break-away deflection z_ba = breakaway_fraction mu F_N / sigma0 (below the smallest z_max at any
+speed). The kink of dz/dt at v_r = 0 is located as an event. Stiff (bristle dynamics): simulate() picks CVODE
+BDF for it. State: bristle_deflection z [m].
+
+Parameters
+----------
+mu, mu_static : float
+    Coulomb and static coefficients [-], 0 < mu <= mu_static (Fc = mu F_N, Fs = mu_static F_N).
+stribeck_velocity : float
+    v_s [m/s], > 0.
+bristle_stiffness : float
+    sigma0 [N/m], > 0.
+bristle_damping : float
+    sigma1 [N s/m], >= 0.
+viscous_damping : float
+    sigma2 [N s/m], >= 0.
+breakaway_fraction : float
+    z_ba / (mu F_N / sigma0) [-], in [0, 1); 0 gives LuGre's drift back.
+)doc")
+        .def(py::init([](double mu, double mu_static, double v_s, double sigma0, double sigma1, double sigma2,
+                         double breakaway_fraction) {
+                 return constructing([&] {
+                     return ElastoPlastic(
+                         ElastoPlastic::Params{mu, mu_static, v_s, sigma0, sigma1, sigma2, breakaway_fraction});
+                 });
+             }),
+             py::arg("mu"), py::arg("mu_static"), py::arg("stribeck_velocity"), py::arg("bristle_stiffness"),
+             py::arg("bristle_damping"), py::arg("viscous_damping") = 0.0, py::arg("breakaway_fraction") = 0.5)
+        .def_property_readonly("mu", [](const ElastoPlastic& l) { return l.params().coulomb_coefficient; })
+        .def_property_readonly("mu_static", [](const ElastoPlastic& l) { return l.params().static_coefficient; })
+        .def_property_readonly("stribeck_velocity", [](const ElastoPlastic& l) { return l.params().stribeck_velocity; })
+        .def_property_readonly("bristle_stiffness", [](const ElastoPlastic& l) { return l.params().bristle_stiffness; })
+        .def_property_readonly("bristle_damping", [](const ElastoPlastic& l) { return l.params().bristle_damping; })
+        .def_property_readonly("viscous_damping", [](const ElastoPlastic& l) { return l.params().viscous_damping; })
+        .def_property_readonly("breakaway_fraction",
+                               [](const ElastoPlastic& l) { return l.params().breakaway_fraction; })
+        .def("stribeck_level", &ElastoPlastic::stribeck_level, py::arg("v_r"), py::arg("normal_force"),
+             "Steady sliding level g(v_r) [N] at normal force F_N [N].")
+        .def("breakaway_deflection", &ElastoPlastic::breakaway_deflection, py::arg("normal_force"),
+             "Break-away deflection z_ba [m] at normal force F_N [N]: below it the contact is purely elastic.")
+        .def("plasticity_factor", &ElastoPlastic::plasticity_factor, py::arg("v_r"), py::arg("normal_force"),
+             py::arg("z"), py::arg("branch"),
+             "alpha(z, v_r) [-] at deflection z [m] on branch sgn(v_r) (+1 or -1).")
+        .def("__repr__", [](const ElastoPlastic& l) {
+            const auto& p = l.params();
+            return "ElastoPlastic(mu=" + format_double(p.coulomb_coefficient) + ", mu_static=" +
+                   format_double(p.static_coefficient) + ", stribeck_velocity=" + format_double(p.stribeck_velocity) +
+                   ", bristle_stiffness=" + format_double(p.bristle_stiffness) + ", bristle_damping=" +
+                   format_double(p.bristle_damping) + ", viscous_damping=" + format_double(p.viscous_damping) +
+                   ", breakaway_fraction=" + format_double(p.breakaway_fraction) + ")";
+        })
+        .def(py::pickle(
+            [](const ElastoPlastic& l) {
+                const auto& p = l.params();
+                return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity,
+                                      p.bristle_stiffness, p.bristle_damping, p.viscous_damping, p.breakaway_fraction);
+            },
+            [](const py::tuple& t) {
+                return ElastoPlastic(ElastoPlastic::Params{t[0].cast<double>(), t[1].cast<double>(),
+                                                           t[2].cast<double>(), t[3].cast<double>(),
+                                                           t[4].cast<double>(), t[5].cast<double>(),
+                                                           t[6].cast<double>()});
             }));
 
     py::class_<PowerLawCoefficient>(m, "PowerLawCoefficient", R"doc(

@@ -50,7 +50,8 @@ void register_errors(py::module_&) {
 
 void register_results(py::module_& m) {
     py::enum_<Method>(m, "Method", "Integrator of the hybrid event loop.")
-        .value("automatic", Method::automatic, "cvode_bdf for stiff laws (LuGre), dormand_prince otherwise")
+        .value("automatic", Method::automatic,
+               "cvode_bdf for stiff laws (LuGre, ElastoPlastic), dormand_prince otherwise")
         .value("dormand_prince", Method::dormand_prince, "explicit RK5(4), dense output, root location")
         .value("cvode_bdf", Method::cvode_bdf, "SUNDIALS CVODE BDF + Newton, dense linear solver")
         .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point");

@@ -22,6 +22,6 @@ std::shared_ptr<Result> simulate_variant(const RigVariant& rig, double t_end, co
 
 /// One rig type per law, built from a FrictionLaw: std::variant<Rig<Coulomb>, Rig<Stribeck>, ...>.
 template <template <class> class Rig>
-using RigVariant = std::variant<Rig<Coulomb>, Rig<Stribeck>, Rig<Dahl>, Rig<LuGre>>;
+using RigVariant = std::variant<Rig<Coulomb>, Rig<Stribeck>, Rig<Dahl>, Rig<LuGre>, Rig<ElastoPlastic>>;
 
 }  // namespace frictionsim::python

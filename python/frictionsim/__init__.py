@@ -14,6 +14,7 @@ from ._core import (
     AxialVibrationRig,
     Coulomb,
     Dahl,
+    ElastoPlastic,
     HystereticFriction,
     KinematicRig,
     LuGre,
@@ -31,13 +32,14 @@ from .sweeps import SweepResult, sweep
 __version__ = "0.1.0"
 
 #: Friction laws a rig can run with.
-FRICTION_LAWS = (Coulomb, Stribeck, Dahl, LuGre)
+FRICTION_LAWS = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic)
 
 __all__ = [
     "AxialVibrationRig",
     "ChatteringError",
     "Coulomb",
     "Dahl",
+    "ElastoPlastic",
     "HystereticFriction",
     "Event",
     "FRICTION_LAWS",

@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'Coulomb', 'Dahl', 'Event', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LuGre', 'Method', 'PowerLawCoefficient', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LuGre', 'Method', 'PowerLawCoefficient', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 
 class Coulomb:
 
@@ -112,6 +112,57 @@ class LuGre:
         ...
 
     def stribeck_level(self, v_r: float, normal_force: float) -> float:
+        ...
+
+    @property
+    def bristle_damping(self) -> float:
+        ...
+
+    @property
+    def bristle_stiffness(self) -> float:
+        ...
+
+    @property
+    def mu(self) -> float:
+        ...
+
+    @property
+    def mu_static(self) -> float:
+        ...
+
+    @property
+    def stribeck_velocity(self) -> float:
+        ...
+
+    @property
+    def viscous_damping(self) -> float:
+        ...
+
+class ElastoPlastic:
+
+    def __getstate__(self) -> tuple[float, float, float, float, float, float, float]:
+        ...
+
+    def __init__(self, mu: float, mu_static: float, stribeck_velocity: float, bristle_stiffness: float, bristle_damping: float, viscous_damping: float=0.0, breakaway_fraction: float=0.5) -> None:
+        ...
+
+    def __repr__(self) -> str:
+        ...
+
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+
+    def breakaway_deflection(self, normal_force: float) -> float:
+        ...
+
+    def plasticity_factor(self, v_r: float, normal_force: float, z: float, branch: int) -> float:
+        ...
+
+    def stribeck_level(self, v_r: float, normal_force: float) -> float:
+        ...
+
+    @property
+    def breakaway_fraction(self) -> float:
         ...
 
     @property

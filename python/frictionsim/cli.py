@@ -63,7 +63,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="frictionsim",
         description="Friction-driven dynamics in drilling: simulate paper 000's axial vibrating-sliding rig, "
                     "kinematic friction rigs and paper 001's torsional drill-string rig with Coulomb, Stribeck, "
-                    "Dahl, LuGre and hysteretic (eq 6) friction.",
+                    "Dahl, LuGre, elasto-plastic and hysteretic (eq 6) friction.",
         epilog="Scenario files are TOML; see examples/scenarios/ and `python -c 'help(\"frictionsim.scenario\")'`.")
     parser.add_argument("--version", action="version", version=f"frictionsim {__version__}")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")

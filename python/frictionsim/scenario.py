@@ -37,10 +37,11 @@ key by key, unless the case changes ``type``, in which case the default table is
     reference_speed w_ref [rad/s], normal_force N2 [N], contact_radius r [m], initial_disc_speed [rad/s],
     initial_drive_speed [rad/s]; all optional. A file's cases are either all torsional or none.
 ``friction``
-    ``type`` = "coulomb" | "stribeck" | "dahl" | "lugre" and the constructor's parameters by name
-    (:class:`frictionsim.Coulomb` ...): mu, mu_static, stribeck_velocity [m/s], shape_exponent,
+    ``type`` = "coulomb" | "stribeck" | "dahl" | "lugre" | "elasto_plastic" and the constructor's parameters by
+    name (:class:`frictionsim.Coulomb` ...): mu, mu_static, stribeck_velocity [m/s], shape_exponent,
     viscous_coefficient [N s/m], karnopp_band [m/s], tangential_stiffness [N/m], exponent, bristle_stiffness [N/m],
-    bristle_damping [N s/m], viscous_damping [N s/m]. On a torsional rig they act at contact_radius (v_r = r w2).
+    bristle_damping [N s/m], viscous_damping [N s/m], breakaway_fraction (elasto_plastic: z_ba / (mu F_N / sigma0)).
+    On a torsional rig they act at contact_radius (v_r = r w2).
     Torsional rigs only: ``type = "hysteretic"``, paper 001's eq 6 (:class:`frictionsim.HystereticFriction`):
     stick_slope a [N m s/rad], accelerating = [p00, p10, p01, p20, p11, p02] and decelerating = [n00, ..., n02]
     (6 numbers each: N m, N m s/rad, kg m^2, N m s^2/rad^2, N m s^3/rad^2, N m s^4/rad^2), optional stick_speed
@@ -112,6 +113,8 @@ FRICTION_TYPES: Dict[str, Tuple[str, Tuple[str, ...], Tuple[str, ...]]] = {
     "dahl": ("Dahl", ("mu", "tangential_stiffness"), ("exponent",)),
     "lugre": ("LuGre", ("mu", "mu_static", "stribeck_velocity", "bristle_stiffness", "bristle_damping"),
               ("viscous_damping",)),
+    "elasto_plastic": ("ElastoPlastic", ("mu", "mu_static", "stribeck_velocity", "bristle_stiffness",
+                                         "bristle_damping"), ("viscous_damping", "breakaway_fraction")),
     **_torsional.FRICTION_TYPES,  # "hysteretic", "fig7": torsional rigs only
 }
 RIG_TYPES = ("axial", "kinematic", "torsional")

@@ -6,7 +6,7 @@ module holds what differs for the torsional rig, :class:`frictionsim.TorsionalRi
 * rig keys: the :class:`~frictionsim.TorsionalRig` keywords (:data:`RIG_KEYS`, all optional, SI units);
 * friction types "hysteretic" (:class:`~frictionsim.HystereticFriction`, paper 001 eq 6) and "fig7" (the eq 6 set
   of :func:`frictionsim.torsional.fig7_friction`), which only a torsional rig runs; the engine's other laws
-  (coulomb, stribeck, dahl, lugre) act at the rig's contact_radius;
+  (coulomb, stribeck, dahl, lugre, elasto_plastic) act at the rig's contact_radius;
 * analysis: the limit cycle of the disc speed (:func:`frictionsim.torsional.limit_cycle`) after ``transient``
   [s] (default t_end / 2), with ``stick_speed`` [rad/s] (default 0.01) the |w2| counted as stuck, instead of the
   mean friction over vibration cycles;

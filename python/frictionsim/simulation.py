@@ -35,8 +35,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
     rig : AxialVibrationRig, KinematicRig or TorsionalRig
     t_end : float, s
     method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams"}
-        "automatic" picks CVODE BDF for stiff laws (LuGre) and Dormand-Prince 5(4) otherwise (measured faster
-        on these rigs, see the README).
+        "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
+        (measured faster on these rigs, see the README).
     rtol, atol : float
         Relative and absolute tolerances (atol in the states' SI units).
     atol_per_state : sequence of float, optional
