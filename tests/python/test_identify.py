@@ -324,7 +324,7 @@ def test_bad_rig_input_names_the_parameter(change, parameter):
 def test_public_names():
     """fs.fit.identify is the dispatching function (no module of that name shadows it)."""
     assert fs.fit.identify is identify and callable(identify)
-    assert set(LAW_PARAMETERS) == {"dahl", "lugre", "stribeck"}
+    assert set(LAW_PARAMETERS) == {"dahl", "lugre", "elasto_plastic", "stribeck"}
     assert LAW_PARAMETERS["dahl"]["tangential_stiffness"] == ("k_t", "N/m", (10.0, 1e10))
     assert fs.fit.IdentificationResult is IdentificationResult
 

@@ -2,7 +2,8 @@
 
 Identification by output-error least squares, one module a job:
 
-* :mod:`.kinematic`: identify_dahl / identify_lugre / identify_stribeck / identify on the kinematic rig;
+* :mod:`.kinematic`: identify_dahl / identify_lugre / identify_elasto_plastic / identify_stribeck / identify on the
+  kinematic rig;
 * :mod:`.rig`: identify_axial_rig, the law inside paper 000's axial vibrating-sliding rig;
 * :mod:`.torsional`: paper 001's identification of the hysteretic law (eq 6) on the torsional rig, by linear least
   squares: estimate_friction_torque (eq 1a from the encoder angles, FrictionTorqueEstimate) and
@@ -14,7 +15,7 @@ Identification by output-error least squares, one module a job:
 """
 
 from .power_law import PowerLawFit, fit_power_law
-from .kinematic import identify, identify_dahl, identify_lugre, identify_stribeck
+from .kinematic import identify, identify_dahl, identify_elasto_plastic, identify_lugre, identify_stribeck
 from .parameters import LAW_PARAMETERS
 from .result import IdentificationResult
 from .rig import identify_axial_rig
@@ -22,5 +23,6 @@ from .torsional import (BranchFit, FrictionTorqueEstimate, HystereticFit, estima
                         fit_hysteretic_friction)
 
 __all__ = ["PowerLawFit", "fit_power_law", "IdentificationResult", "LAW_PARAMETERS", "identify", "identify_dahl",
-           "identify_lugre", "identify_stribeck", "identify_axial_rig", "FrictionTorqueEstimate",
-           "estimate_friction_torque", "BranchFit", "HystereticFit", "fit_hysteretic_friction"]
+           "identify_lugre", "identify_elasto_plastic", "identify_stribeck", "identify_axial_rig",
+           "FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
+           "fit_hysteretic_friction"]

@@ -1,5 +1,5 @@
-"""Friction-law identification on the kinematic rig: Dahl, LuGre and Stribeck fitted to a measured friction
-force through the C++ engine.
+"""Friction-law identification on the kinematic rig: Dahl, LuGre, ElastoPlastic and Stribeck fitted to a
+measured friction force through the C++ engine.
 
 Paper 000 (sec 4.2) stresses that the Dahl tangential contact stiffness k_t "is one of the most complicated
 parameters that need to be determined" and that genetic / particle-swarm searches are commonly used for it.
@@ -30,15 +30,15 @@ from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds,
 from .solver import _fit, _fit_setup
 from .validation import _normal_force, _record, _reject, _vector, _weights
 
-__all__ = ["identify", "identify_dahl", "identify_lugre", "identify_stribeck"]
+__all__ = ["identify", "identify_dahl", "identify_lugre", "identify_elasto_plastic", "identify_stribeck"]
 
 
 def _data_guess(lawdef: _LawDef, v: np.ndarray, force: np.ndarray, n_abs: np.ndarray) -> Dict[str, float]:
     """Starting values from the record (refined by a coarse scan and least_squares).
 
-    Dahl: mu from the saturated plateau of |F| / N. Stribeck / LuGre: the sliding branch at the faster half of
-    the samples, sgn(v_r) F = mu N + sigma v_r, fitted as a line (mu from the intercept, sigma_2 / sigma_v
-    from the slope); mu_static from the top 1 % of |F| / N.
+    Dahl: mu from the saturated plateau of |F| / N. Stribeck / LuGre / ElastoPlastic: the sliding branch at the
+    faster half of the samples, sgn(v_r) F = mu N + sigma v_r, fitted as a line (mu from the intercept,
+    sigma_2 / sigma_v from the slope); mu_static from the top 1 % of |F| / N.
     """
     ratio = np.abs(force) / n_abs
     speed = np.abs(v)
@@ -190,8 +190,9 @@ _COMMON_DOC = """
     fixed : dict, optional
         Parameters held at the given values instead of fitted.
     initial_state : "measured" | "fit" | "zero" | float
-        Law state at t[0]: from the first measured force (Dahl z0 = F0 / k_t; LuGre from F0 and v_r(t0)),
-        fitted (reported as ``initial_force`` F_0 [N]), zero, or the law state itself (m).
+        Law state at t[0]: from the first measured force (Dahl z0 = F0 / k_t; LuGre from F0 and v_r(t0);
+        ElastoPlastic as LuGre when sliding, z0 = (F0 - (sigma_1 + sigma_2) v_r(t0)) / sigma_0 in its elastic
+        band), fitted (reported as ``initial_force`` F_0 [N]), zero, or the law state itself (m).
     weights : array, optional
         Residual weights (1/sigma_i).
     rtol : float
@@ -239,6 +240,19 @@ def identify_dahl(t: Any, relative_velocity: Any, friction_force: Any, normal_fo
                                bounds=bounds, initial_guess=initial_guess, fixed=fixed, **options)
 
 
+def _identify_bristle_law(key: str, t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any, *,
+                          fit_viscous: bool, initial_guess: Optional[Mapping[str, float]],
+                          fixed: Optional[Mapping[str, float]], **options: Any) -> IdentificationResult:
+    """LuGre, ElastoPlastic: ``fit_viscous=False`` holds sigma_2 at ``initial_guess['viscous_damping']`` or 0."""
+    fixed = dict(fixed or {})
+    if not fit_viscous and not any(k in fixed for k in ("viscous_damping", "sigma2", "sigma_2")):
+        guess = dict(initial_guess or {})
+        fixed["viscous_damping"] = guess.pop("viscous_damping", 0.0)
+        initial_guess = guess
+    return _identify_kinematic(key, t, relative_velocity, friction_force, normal_force,
+                               initial_guess=initial_guess, fixed=fixed, **options)
+
+
 def identify_lugre(t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any, *,
                    fit_viscous: bool = True, method: str = "least_squares", bounds: Optional[Bounds] = None,
                    initial_guess: Optional[Mapping[str, float]] = None, fixed: Optional[Mapping[str, float]] = None,
@@ -249,13 +263,26 @@ def identify_lugre(t: Any, relative_velocity: Any, friction_force: Any, normal_f
     ``fit_viscous=False`` holds sigma_2 at ``initial_guess['viscous_damping']`` or 0. sigma_1 only shows in
     fast pre-sliding transients: quasi-static data leave it flagged not identifiable.
     """
-    fixed = dict(fixed or {})
-    if not fit_viscous and not any(k in fixed for k in ("viscous_damping", "sigma2", "sigma_2")):
-        guess = dict(initial_guess or {})
-        fixed["viscous_damping"] = guess.pop("viscous_damping", 0.0)
-        initial_guess = guess
-    return _identify_kinematic("lugre", t, relative_velocity, friction_force, normal_force, method=method,
-                               bounds=bounds, initial_guess=initial_guess, fixed=fixed, **options)
+    return _identify_bristle_law("lugre", t, relative_velocity, friction_force, normal_force,
+                                 fit_viscous=fit_viscous, method=method, bounds=bounds, initial_guess=initial_guess,
+                                 fixed=fixed, **options)
+
+
+def identify_elasto_plastic(t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any, *,
+                            fit_viscous: bool = True, method: str = "least_squares", bounds: Optional[Bounds] = None,
+                            initial_guess: Optional[Mapping[str, float]] = None,
+                            fixed: Optional[Mapping[str, float]] = None, **options: Any) -> IdentificationResult:
+    """Fit the elasto-plastic law (Dupont et al. 2002): LuGre's parameters (see :func:`identify_lugre`) and
+    breakaway_fraction beta [-] = z_ba / (mu F_N / sigma_0), the elastic band's share of the Coulomb deflection.
+
+    ``fit_viscous=False`` holds sigma_2 at ``initial_guess['viscous_damping']`` or 0. beta only shows where
+    the bristle is loaded from a force reversal towards sliding (the knee between the elastic band and the
+    sliding level): a record that never reverses leaves it flagged not identifiable. Its bounds must stay
+    below 1 (default [0, 0.95]).
+    """
+    return _identify_bristle_law("elasto_plastic", t, relative_velocity, friction_force, normal_force,
+                                 fit_viscous=fit_viscous, method=method, bounds=bounds, initial_guess=initial_guess,
+                                 fixed=fixed, **options)
 
 
 def identify_stribeck(t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any, *,
@@ -281,13 +308,15 @@ def identify_stribeck(t: Any, relative_velocity: Any, friction_force: Any, norma
 
 def identify(law: Any, t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any,
              **kwargs: Any) -> IdentificationResult:
-    """Dispatch to :func:`identify_dahl`, :func:`identify_lugre` or :func:`identify_stribeck` by ``law``
-    ("dahl", "lugre", "stribeck", case-insensitive, or the class fs.Dahl / fs.LuGre / fs.Stribeck)."""
+    """Dispatch to :func:`identify_dahl`, :func:`identify_lugre`, :func:`identify_elasto_plastic` or
+    :func:`identify_stribeck` by ``law`` ("dahl", "lugre", "elasto_plastic" or "elastoplastic", "stribeck",
+    case-insensitive, or the class fs.Dahl / fs.LuGre / fs.ElastoPlastic / fs.Stribeck)."""
     lawdef = _law_def(law)
-    function = {"dahl": identify_dahl, "lugre": identify_lugre, "stribeck": identify_stribeck}[lawdef.key]
+    function = {"dahl": identify_dahl, "lugre": identify_lugre, "elasto_plastic": identify_elasto_plastic,
+                "stribeck": identify_stribeck}[lawdef.key]
     return function(t, relative_velocity, friction_force, normal_force, **kwargs)
 
 
-for _f in (identify_dahl, identify_lugre, identify_stribeck):
+for _f in (identify_dahl, identify_lugre, identify_elasto_plastic, identify_stribeck):
     _f.__doc__ = (_f.__doc__ or "") + _COMMON_DOC
 del _f

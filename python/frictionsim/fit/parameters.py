@@ -10,7 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
-from .._core import Dahl, LuGre, Stribeck
+from .._core import Dahl, ElastoPlastic, LuGre, Stribeck
 from .validation import _reject
 
 
@@ -24,6 +24,7 @@ class _Param:
     bounds: Tuple[float, float]  # default search bounds; upper NaN: from the data (see search_space._user_bounds)
     minimum: float = 0.0  # validity: > minimum (strict) or >= minimum
     strict: bool = True
+    maximum: float = math.inf  # validity: < maximum
     aliases: Tuple[str, ...] = ()
     scan: bool = False  # coarse grid scan for a starting value when no initial guess is given
     default: Optional[float] = None  # value when held fixed and not given
@@ -55,27 +56,38 @@ class _LawDef:
         return out
 
     def build(self, physical: Mapping[str, float]):
-        cls = {"dahl": Dahl, "lugre": LuGre, "stribeck": Stribeck}[self.key]
+        cls = {"dahl": Dahl, "lugre": LuGre, "elasto_plastic": ElastoPlastic, "stribeck": Stribeck}[self.key]
         return cls(**{k: float(physical[k]) for k in self.physical_names})
 
     def state_stiffness(self, physical: Mapping[str, float]) -> float:
         """dF/dz of the law state [N/m] (k_t or sigma_0), to scale its absolute tolerance; 0 if no state."""
         return {"dahl": physical.get("tangential_stiffness", 0.0),
-                "lugre": physical.get("bristle_stiffness", 0.0)}.get(self.key, 0.0)
+                "lugre": physical.get("bristle_stiffness", 0.0),
+                "elasto_plastic": physical.get("bristle_stiffness", 0.0)}.get(self.key, 0.0)
 
     def state_from_force(self, physical: Mapping[str, float], force: float, velocity: float,
                          normal_force: float) -> Optional[List[float]]:
         """Law state that gives friction force ``force`` [N] at v_r = ``velocity``, N = ``normal_force``."""
         if self.key == "dahl":  # F = k_t z
             return [force / physical["tangential_stiffness"]]
-        if self.key == "lugre":  # F = sigma0 z (1 - sigma1 |v| / g) + (sigma1 + sigma2) v
+        if self.key in ("lugre", "elasto_plastic"):  # F = sigma0 z (1 - sigma1 |v| / g) + (sigma1 + sigma2) v
             s0, s1, s2 = (physical["bristle_stiffness"], physical["bristle_damping"], physical["viscous_damping"])
             r = velocity / physical["stribeck_velocity"]
             g = normal_force * (physical["mu"] + (physical["mu_static"] - physical["mu"]) * math.exp(-r * r))
             factor = 1.0 - s1 * abs(velocity) / g
-            if abs(factor) < 1e-6:
-                return [force / s0]
-            return [(force - (s1 + s2) * velocity) / (s0 * factor)]
+            z = force / s0 if abs(factor) < 1e-6 else (force - (s1 + s2) * velocity) / (s0 * factor)
+            if self.key == "elasto_plastic":
+                # LuGre's z (alpha = 1) is exact in gross sliding; below break-away and while unloading alpha = 0
+                # and F = sigma0 z + (sigma1 + sigma2) v is. Once sigma1 |v| is a sizeable part of g both can
+                # match F, so LuGre's is kept where it lies past the ramp's middle (alpha >= 1/2) on the side of
+                # v: a record that starts in motion is sliding. The ramp has no closed-form inverse; LuGre's z
+                # is near enough there to start a run.
+                z_ba = physical["breakaway_fraction"] * physical["mu"] * normal_force / s0
+                elastic = (force - (s1 + s2) * velocity) / s0
+                sliding = z * velocity > 0.0 and abs(z) >= 0.5 * (z_ba + g / s0)
+                if not sliding and (abs(elastic) <= z_ba or elastic * velocity <= 0.0):
+                    z = elastic
+            return [z]
         return None
 
     def starting_values(self) -> Dict[str, float]:
@@ -92,6 +104,19 @@ _MU = _Param("mu", "mu", "-", (1e-4, 10.0), aliases=("friction_coefficient", "co
 _EXCESS = _Param("mu_static_excess", "mu_s - mu", "-", (0.0, 10.0), strict=False)
 _VS = _Param("stribeck_velocity", "v_s", "m/s", (1e-7, 10.0), aliases=("v_s",), scan=True, start=1e-3)
 
+_LUGRE = (_MU, _EXCESS, _VS,
+          _Param("bristle_stiffness", "sigma_0", "N/m", (10.0, 1e10), aliases=("sigma0", "sigma_0"), scan=True,
+                 start=1e5),
+          _Param("bristle_damping", "sigma_1", "N s/m", (0.0, math.nan), strict=False, aliases=("sigma1", "sigma_1"),
+                 scan=True, start=0.0),
+          _Param("viscous_damping", "sigma_2", "N s/m", (0.0, math.nan), strict=False, aliases=("sigma2", "sigma_2"),
+                 scan=True, default=0.0))
+_LUGRE_NAMES = ("mu", "mu_static", "stribeck_velocity", "bristle_stiffness", "bristle_damping", "viscous_damping")
+# z_ba / (mu N / sigma_0): the law needs < 1 (the ramp to z_max has positive width); 0.95 keeps the ramp at least
+# 5 % of the Coulomb deflection wide by default
+_BREAKAWAY = _Param("breakaway_fraction", "beta", "-", (0.0, 0.95), strict=False, maximum=1.0, aliases=("beta",),
+                    default=0.5)
+
 _LAWS: Dict[str, _LawDef] = {
     "dahl": _LawDef(
         "dahl", "Dahl",
@@ -99,16 +124,9 @@ _LAWS: Dict[str, _LawDef] = {
          _Param("tangential_stiffness", "k_t", "N/m", (10.0, 1e10), aliases=("k_t",), scan=True, start=1e5),
          _Param("exponent", "alpha", "-", (0.5, 4.0), strict=False, aliases=("alpha",), default=1.0)),
         ("mu", "tangential_stiffness", "exponent"), 1),
-    "lugre": _LawDef(
-        "lugre", "LuGre",
-        (_MU, _EXCESS, _VS,
-         _Param("bristle_stiffness", "sigma_0", "N/m", (10.0, 1e10), aliases=("sigma0", "sigma_0"), scan=True,
-                start=1e5),
-         _Param("bristle_damping", "sigma_1", "N s/m", (0.0, math.nan), strict=False, aliases=("sigma1", "sigma_1"),
-                scan=True, start=0.0),
-         _Param("viscous_damping", "sigma_2", "N s/m", (0.0, math.nan), strict=False, aliases=("sigma2", "sigma_2"),
-                scan=True, default=0.0)),
-        ("mu", "mu_static", "stribeck_velocity", "bristle_stiffness", "bristle_damping", "viscous_damping"), 1),
+    "lugre": _LawDef("lugre", "LuGre", _LUGRE, _LUGRE_NAMES, 1),
+    "elasto_plastic": _LawDef("elasto_plastic", "ElastoPlastic", _LUGRE + (_BREAKAWAY,),
+                              _LUGRE_NAMES + ("breakaway_fraction",), 1),
     "stribeck": _LawDef(
         "stribeck", "Stribeck",
         (_MU, _EXCESS, _VS,
@@ -128,6 +146,7 @@ _PHYSICAL_META = {  # symbol, unit of reported parameters
     "tangential_stiffness": ("k_t", "N/m"), "exponent": ("alpha", "-"), "bristle_stiffness": ("sigma_0", "N/m"),
     "bristle_damping": ("sigma_1", "N s/m"), "viscous_damping": ("sigma_2", "N s/m"),
     "shape_exponent": ("delta", "-"), "viscous_coefficient": ("sigma_v", "N s/m"), "initial_force": ("F_0", "N"),
+    "breakaway_fraction": ("beta", "-"),
 }
 
 #: Fit variable of the kinematic rig's initial friction force F_0 [N] (initial_state="fit").
@@ -142,13 +161,16 @@ def _stiffness_first(names: Sequence[str]) -> List[str]:
     return sorted(names, key=lambda name: 0 if name in _CONTACT_STIFFNESSES else 1)
 
 
+_SPELLINGS = {key.replace("_", ""): lawdef for key, lawdef in _LAWS.items()}  # elasto_plastic, ElastoPlastic
+
+
 def _law_def(law: Any) -> _LawDef:
-    if isinstance(law, type) and law in (Dahl, LuGre, Stribeck):
+    if isinstance(law, type) and law in (Dahl, LuGre, ElastoPlastic, Stribeck):
         law = law.__name__
     key = str(law).lower().replace("-", "").replace("_", "")
-    if key not in _LAWS:
-        _reject(f"law must be one of 'dahl', 'lugre', 'stribeck' (got {law!r})", "law")
-    return _LAWS[key]
+    if key not in _SPELLINGS:
+        _reject(f"law must be one of 'dahl', 'lugre', 'elasto_plastic', 'stribeck' (got {law!r})", "law")
+    return _SPELLINGS[key]
 
 
 def _canonical(lawdef: _LawDef, key: str, where: str, extra: Sequence[str] = ()) -> str:

@@ -24,8 +24,8 @@ class IdentificationResult:
     Attributes
     ----------
     law_name : str
-        "Dahl", "LuGre" or "Stribeck".
-    law : fs.Dahl | fs.LuGre | fs.Stribeck
+        "Dahl", "LuGre", "ElastoPlastic" or "Stribeck".
+    law : fs.Dahl | fs.LuGre | fs.ElastoPlastic | fs.Stribeck
         Ready to use, e.g. ``fs.AxialVibrationRig(friction=result.law)``.
     params : dict
         Fitted and fixed parameters under the law constructor's keywords (mu [-], tangential_stiffness [N/m],

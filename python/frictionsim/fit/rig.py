@@ -51,7 +51,7 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
         included; subtract a logger's start time).
     drive_force : array, N
         Measured drive force at ``t``.
-    law : "dahl" | "lugre" | "stribeck"
+    law : "dahl" | "lugre" | "elasto_plastic" | "stribeck"
         The friction law inside the rig.
     fit : sequence of str
         Parameters to estimate (e.g. ("mu", "tangential_stiffness") or with "exponent"); the others are held

@@ -133,6 +133,8 @@ def _user_bounds(lawdef: _LawDef, bounds: Optional[Bounds], extra: Mapping[str, 
             if lo < param.minimum or (param.strict and lo == param.minimum):
                 rule = ">" if param.strict else ">="
                 _reject(f"{where}: the lower bound must be {rule} {param.minimum} for {name} (got {lo})", where)
+        if math.isfinite(param.maximum) and hi >= param.maximum:
+            _reject(f"{where}: the upper bound must be < {param.maximum} for {name} (got {hi})", where)
         out[name] = (lo, hi)
     return out
 
@@ -185,7 +187,8 @@ def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, floa
         variables.append(_make_var(param, (lo, hi), value, floors.get(name, 0.0)))
     for name, value in fixed.items():
         param = extra.get(name) or (lawdef.param(name) if name != "mu_static" else None)
-        if param is not None and (value < param.minimum or (param.strict and value == param.minimum)):
+        if param is not None and (value < param.minimum or (param.strict and value == param.minimum)
+                                  or value >= param.maximum):
             _reject(f"fixed[{name!r}] = {value} is not a valid {name}", f"fixed[{name!r}]")
 
     def physical(q: Mapping[str, float]) -> Dict[str, float]:
