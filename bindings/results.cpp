@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common.hpp"
 
@@ -22,6 +24,11 @@ py::array_t<T> to_array(const std::vector<T>& v) {
 py::object python_error(const char* name) { return py::module_::import("frictionsim.errors").attr(name); }
 
 void raise(const py::object& type, const py::object& instance) { PyErr_SetObject(type.ptr(), instance.ptr()); }
+
+/// A run's events without its columns: frictionsim.Result builds its event list from this only when asked.
+struct EventLog {
+    std::vector<Event> events;
+};
 
 py::object partial_result(const SimulationError& e) {
     if (!e.partial()) return py::none();
@@ -83,6 +90,21 @@ void register_results(py::module_& m) {
                    e.mode_before_name + " -> " + e.mode_after_name + ")";
         });
 
+    py::class_<EventLog>(m, "EventLog", "A run's event log, read out of the engine's result on demand.")
+        .def("__len__", [](const EventLog& log) { return log.events.size(); })
+        .def_property_readonly("rows", [](const EventLog& log) {
+            // one tuple per event (time, name, switching_function, mode_before, mode_after, mode names): far
+            // cheaper to hand over than Event objects, whose attributes Python would read one by one
+            py::list rows(log.events.size());
+            for (std::size_t k = 0; k < log.events.size(); ++k) {
+                const Event& e = log.events[k];
+                rows[k] = py::make_tuple(e.time, e.name, e.switching_function, e.mode_before, e.mode_after,
+                                         e.mode_before_name, e.mode_after_name);
+            }
+            return rows;
+        }, "The events as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, "
+           "mode_after_name).");
+
     py::class_<Result, std::shared_ptr<Result>>(m, "RawResult", "What the C++ engine recorded (see frictionsim.Result).")
         .def_readonly("state_names", &Result::state_names)
         .def_property_readonly("t", [](const Result& r) { return to_array(r.t); })
@@ -93,18 +115,8 @@ void register_results(py::module_& m) {
         .def_property_readonly("friction_force", [](const Result& r) { return to_array(r.friction_force); })
         .def_property_readonly("mode", [](const Result& r) { return to_array(r.mode); })
         .def_readonly("events", &Result::events)
-        .def_property_readonly("event_rows", [](const Result& r) {
-            // one tuple per event (time, name, switching_function, mode_before, mode_after, mode names): far
-            // cheaper to hand over than Event objects, whose attributes Python would read one by one
-            py::list rows(r.events.size());
-            for (std::size_t k = 0; k < r.events.size(); ++k) {
-                const Event& e = r.events[k];
-                rows[k] = py::make_tuple(e.time, e.name, e.switching_function, e.mode_before, e.mode_after,
-                                         e.mode_before_name, e.mode_after_name);
-            }
-            return rows;
-        }, "The event log as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, "
-           "mode_after_name).")
+        .def("take_event_log", [](Result& r) { return EventLog{std::exchange(r.events, {})}; },
+             "Move the event log out (events is empty afterwards): frictionsim.Result keeps it, not the columns.")
         .def_property_readonly("stats", [](const Result& r) {
             const SolverStats& s = r.stats;
             return py::dict(py::arg("steps") = s.steps, py::arg("rhs_evaluations") = s.rhs_evaluations,

@@ -60,10 +60,10 @@ class Result:
         self.state_names: List[str] = list(raw.state_names)
         self.friction_force: np.ndarray = raw.friction_force
         self.mode: np.ndarray = raw.mode
-        # The event log is read out of the engine's result on first access (or when pickled): a run with
-        # hundreds of switches would otherwise spend 2 % of a millisecond-long simulation making its tuples
-        # and Event objects (bench/compare.py measured it)
-        self._raw: Optional["_core.RawResult"] = raw
+        # The event log is moved out of the engine's result (its columns are copies already and go with it) and
+        # turned into tuples and Event objects on first access: a run with hundreds of switches would otherwise
+        # spend 2 % of a millisecond-long simulation making them (bench/compare.py measured it)
+        self._event_log: Optional["_core.EventLog"] = raw.take_event_log()
         self._event_rows: Optional[List[tuple]] = None
         self._events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
@@ -82,13 +82,14 @@ class Result:
 
     def _rows(self) -> List[tuple]:
         if self._event_rows is None:
-            self._event_rows = self._raw.event_rows
-            self._raw = None  # the arrays are copies already: the engine's result is no longer needed
+            self._event_rows = self._event_log.rows  # threads racing here build equal lists: no lock needed
         return self._event_rows
 
     def __getstate__(self) -> dict:
-        self._rows()  # the engine's result does not pickle: hand over its event log instead
-        return self.__dict__.copy()
+        state = self.__dict__.copy()
+        state["_event_rows"] = self._rows()  # the engine's event log does not pickle: its rows do
+        state["_event_log"] = None
+        return state
 
     # ------------------------------------------------------------------ named access
     def __getitem__(self, name: str) -> np.ndarray:

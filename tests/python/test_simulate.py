@@ -279,3 +279,27 @@ def test_partial_result_of_an_axial_rig_keeps_its_period():
     partial = info.value.partial
     assert partial.period == rig.period and 0.0 < partial.t_reached < 2.0
     assert partial.mean_over_cycles(cycles=1) > 0.0  # usable as is: no period to pass
+
+
+def test_event_log_is_read_out_lazily_and_survives_copies_and_pickles():
+    """A Result moves the engine's event log out of its raw result (so the raw columns are not kept alive) and makes
+    Event objects only when asked; pickles, copies and a failed run's partial result carry it intact."""
+    import copy
+
+    rig = fs.AxialVibrationRig(friction=fs.Dahl(MU, K_T))
+    options = fs._core.SolverOptions()
+    options.output_times = [0.0, 0.3]
+    raw = rig._simulate(0.3, options, 0.0)
+    result = fs.Result(raw)
+    assert len(raw.events) == 0  # moved out, not copied
+    reference = fs.simulate(rig, 0.3, output_times=[0.0, 0.3]).events
+    assert len(reference) == result.stats["events"] > 10
+    for duplicate in (copy.copy(result), copy.deepcopy(result), pickle.loads(pickle.dumps(result))):
+        assert duplicate.events == reference
+    assert result.events == reference
+    # a failed run: the partial result's events pickle before they were ever read
+    with pytest.raises(fs.SimulationError) as info:
+        fs.simulate(rig, 2.0, max_steps=3000)
+    error = pickle.loads(pickle.dumps(info.value))
+    assert len(error.partial.events) == error.partial.stats["events"] > 0
+    assert error.partial.events == info.value.partial.events
