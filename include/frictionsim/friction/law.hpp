@@ -5,7 +5,7 @@
 //      double static_limit(double normal_force) const;            // largest force that sticking can carry
 //      double slip_force(double v_r, double normal_force, int direction) const;   // direction = sign of slip
 //      double karnopp_band() const;                                // 0: exact stick (switch model)
-//  * state laws (Dahl, LuGre): `has_stick = false`, `state_count >= 1` internal states z;
+//  * state laws (Dahl, LuGre, ElastoPlastic): `has_stick = false`, `state_count >= 1` internal states z;
 //      double force(double v_r, double normal_force, const double* z, int branch) const;
 //      void state_derivative(double v_r, double normal_force, const double* z, int branch, double* dz) const;
 //      static constexpr bool kink_at_zero_velocity;   // the rig locates v_r = 0 as an event; branch = sign(v_r)

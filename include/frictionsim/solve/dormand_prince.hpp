@@ -31,14 +31,15 @@ struct has_rhs_guards<S, std::void_t<decltype(std::declval<const S&>().rhs_guard
     : std::true_type {};
 }  // namespace detail
 
-// Unroll the per-state loop that follows completely. These loops are short (N = 5-20) and GCC's loop vectorizer
-// turns them into pair loads of values the right-hand side has just stored one at a time, each stalling on
-// store forwarding; unrolled, they are left to the straight-line vectorizer, which pairs only values already in
-// registers. Measured on the axial-Dahl run in a plain -O3 program (GCC 12): 1.31 -> 1.04 ms.
-#if defined(__GNUC__) || defined(__clang__)
-#define FRICTIONSIM_UNROLL _Pragma("GCC unroll 32")
+// Unroll the per-state loop that follows (completely for N <= 32; the rigs have N = 2-20). GCC's loop
+// vectorizer turns these short loops into pair loads of values the right-hand side has just stored one at a time,
+// each stalling on store forwarding; unrolled, they are left to the straight-line vectorizer, which pairs only
+// values already in registers. Measured on the axial-Dahl run in a plain -O3 program (GCC 12): 1.31 -> 1.04 ms.
+// `GCC unroll` exists from GCC 8 and in Clang; elsewhere the loops stay as they are. #undef'd at the end.
+#if defined(__clang__) || (defined(__GNUC__) && __GNUC__ >= 8 && !defined(__INTEL_COMPILER))
+#define FRICTIONSIM_DETAIL_UNROLL _Pragma("GCC unroll 32")
 #else
-#define FRICTIONSIM_UNROLL
+#define FRICTIONSIM_DETAIL_UNROLL
 #endif
 
 template <class System>
@@ -91,7 +92,7 @@ public:
     /// Dense output of the last step (Hairer's contd5), valid on [previous_time(), time()].
     void interpolate(double t, double* x) const {
         const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i)
             x[i] = rc1_[i] + s * (rc2_[i] + s1 * (rc3_[i] + s * (rc4_[i] + s1 * rc5_[i])));
     }
@@ -185,29 +186,29 @@ private:
 
     // One trial step of size h from (t_, y_): fills k2..k7 and y1_, returns the scaled error norm.
     double attempt(double h) {
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * a21 * k1_[i];
         stage(t_ + c2 * h, ytmp_, k2_, stage_g_[0]);
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a31 * k1_[i] + a32 * k2_[i]);
         stage(t_ + c3 * h, ytmp_, k3_, stage_g_[1]);
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a41 * k1_[i] + a42 * k2_[i] + a43 * k3_[i]);
         stage(t_ + c4 * h, ytmp_, k4_, stage_g_[2]);
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i)
             ytmp_[i] = y_[i] + h * (a51 * k1_[i] + a52 * k2_[i] + a53 * k3_[i] + a54 * k4_[i]);
         stage(t_ + c5 * h, ytmp_, k5_, stage_g_[3]);
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i)
             ytmp_[i] = y_[i] + h * (a61 * k1_[i] + a62 * k2_[i] + a63 * k3_[i] + a64 * k4_[i] + a65 * k5_[i]);
         rhs(t_ + h, ytmp_, k6_);
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i)
             y1_[i] = y_[i] + h * (a71 * k1_[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
         stage(t_ + h, y1_, k7_, end_g_);  // with rhs_guards: the guards at the step's end, exactly
         double err = 0.0;
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i) {
             const double e =
                 h * (e1 * k1_[i] + e3 * k3_[i] + e4 * k4_[i] + e5 * k5_[i] + e6 * k6_[i] + e7 * k7_[i]);
@@ -219,7 +220,7 @@ private:
     }
 
     void accept(double h, double err, double t_new) {
-        FRICTIONSIM_UNROLL
+        FRICTIONSIM_DETAIL_UNROLL
         for (std::size_t i = 0; i < N; ++i) {  // dense-output coefficients (Hairer's rcont1..5)
             const double dy = y1_[i] - y_[i], bspl = h * k1_[i] - dy;
             rc1_[i] = y_[i];
@@ -384,3 +385,5 @@ private:
 };
 
 }  // namespace frictionsim
+
+#undef FRICTIONSIM_DETAIL_UNROLL
