@@ -81,11 +81,14 @@ struct Sample {
 inline double deflection_scale(const Dahl& law, double normal_force) {
     return law.friction_coefficient() * normal_force / law.tangential_stiffness();
 }
-inline double deflection_scale(const LuGre& law, double normal_force) {
+/// The bristle laws: Fs / sigma0, which for the elasto-plastic law spans all its regimes.
+template <class Bristles>
+double bristle_scale(const Bristles& law, double normal_force) {
     return law.params().static_coefficient * normal_force / law.params().bristle_stiffness;
 }
-inline double deflection_scale(const ElastoPlastic& law, double normal_force) {  // spans all three regimes
-    return law.params().static_coefficient * normal_force / law.params().bristle_stiffness;
+inline double deflection_scale(const LuGre& law, double normal_force) { return bristle_scale(law, normal_force); }
+inline double deflection_scale(const ElastoPlastic& law, double normal_force) {
+    return bristle_scale(law, normal_force);
 }
 template <class Law>
 double deflection_scale(const Law&, double) {

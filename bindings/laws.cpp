@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -37,6 +38,11 @@ std::string format_double(double v) {
     s.precision(12);
     s << v;
     return s.str();
+}
+
+/// The elasto-plastic law's deflections scale with F_N: Python callers pass it directly, so it is checked here.
+double require_normal_force(double normal_force) {
+    return detail::require_positive(ElastoPlastic::name, "normal_force", normal_force);
 }
 
 }  // namespace
@@ -258,11 +264,11 @@ regime, so that small oscillations below break-away do not drift (LuGre creeps u
 
     alpha = 0                                            |z| <= z_ba, or sgn(z) != sgn(v_r) (elastic)
           = 1/2 + 1/2 sin(pi (|z| - z_m) / (z_max - z_ba))   z_ba < |z| < z_max,  z_m = (z_max + z_ba) / 2
-          = 1                                            |z| >= z_max = g(v_r) / sigma0 (LuGre)
+          = 1                                            |z| >= z_max (LuGre)
 
-with the break-away deflection z_ba = breakaway_fraction mu F_N / sigma0 (below the smallest z_max at any
-speed). The kink of dz/dt at v_r = 0 is located as an event. Stiff (bristle dynamics): simulate() picks CVODE
-BDF for it. State: bristle_deflection z [m].
+with the paper's constants 0 <= z_ba < z_max <= |z_ss(v)|: z_max = mu F_N / sigma0 (the largest that rule allows)
+and z_ba = breakaway_fraction z_max. The kink of dz/dt at v_r = 0 is located as an event. Stiff (bristle
+dynamics): simulate() picks CVODE BDF for it. State: bristle_deflection z [m].
 
 Parameters
 ----------
@@ -277,7 +283,8 @@ bristle_damping : float
 viscous_damping : float
     sigma2 [N s/m], >= 0.
 breakaway_fraction : float
-    z_ba / (mu F_N / sigma0) [-], in [0, 1); 0 gives LuGre's drift back.
+    z_ba / z_max [-], in [0, 1). 0 starts the plastic ramp at z = 0 (LuGre-like when loading; unloading stays
+    elastic).
 )doc")
         .def(py::init([](double mu, double mu_static, double v_s, double sigma0, double sigma1, double sigma2,
                          double breakaway_fraction) {
@@ -298,11 +305,21 @@ breakaway_fraction : float
                                [](const ElastoPlastic& l) { return l.params().breakaway_fraction; })
         .def("stribeck_level", &ElastoPlastic::stribeck_level, py::arg("v_r"), py::arg("normal_force"),
              "Steady sliding level g(v_r) [N] at normal force F_N [N].")
-        .def("breakaway_deflection", &ElastoPlastic::breakaway_deflection, py::arg("normal_force"),
-             "Break-away deflection z_ba [m] at normal force F_N [N]: below it the contact is purely elastic.")
-        .def("plasticity_factor", &ElastoPlastic::plasticity_factor, py::arg("v_r"), py::arg("normal_force"),
-             py::arg("z"), py::arg("branch"),
-             "alpha(z, v_r) [-] at deflection z [m] on branch sgn(v_r) (+1 or -1).")
+        .def("plastic_deflection", [](const ElastoPlastic& l, double normal_force) {
+            return l.plastic_deflection(require_normal_force(normal_force));
+        }, py::arg("normal_force"), "z_max = mu F_N / sigma0 [m]: from it on the contact slides as LuGre's.")
+        .def("breakaway_deflection", [](const ElastoPlastic& l, double normal_force) {
+            return l.breakaway_deflection(require_normal_force(normal_force));
+        }, py::arg("normal_force"), "Break-away deflection z_ba [m] at normal force F_N [N]: below it the contact is "
+                                    "purely elastic.")
+        .def("plasticity_factor", [](const ElastoPlastic& l, double normal_force, double z, int branch) {
+            if (branch != 1 && branch != -1)
+                throw InvalidParameter("branch", "ElastoPlastic: branch must be +1 or -1 (the sign of v_r), got " +
+                                                     std::to_string(branch));
+            detail::require_finite(ElastoPlastic::name, "z", z);
+            return l.plasticity_factor(require_normal_force(normal_force), z, branch);
+        }, py::arg("normal_force"), py::arg("z"), py::arg("branch"),
+             "alpha(z) [-] at deflection z [m] and normal force F_N [N], on branch sgn(v_r) (+1 or -1).")
         .def("__repr__", [](const ElastoPlastic& l) {
             const auto& p = l.params();
             return "ElastoPlastic(mu=" + format_double(p.coulomb_coefficient) + ", mu_static=" +

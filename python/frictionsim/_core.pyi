@@ -6,7 +6,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LuGre', 'Method', 'PowerLawCoefficient', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'EventLog', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LuGre', 'Method', 'PowerLawCoefficient', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 
 class Coulomb:
 
@@ -155,7 +155,10 @@ class ElastoPlastic:
     def breakaway_deflection(self, normal_force: float) -> float:
         ...
 
-    def plasticity_factor(self, v_r: float, normal_force: float, z: float, branch: int) -> float:
+    def plastic_deflection(self, normal_force: float) -> float:
+        ...
+
+    def plasticity_factor(self, normal_force: float, z: float, branch: int) -> float:
         ...
 
     def stribeck_level(self, v_r: float, normal_force: float) -> float:
@@ -430,6 +433,18 @@ class RawResult:
 
     @property
     def t_reached(self) -> float:
+        ...
+
+    def take_event_log(self) -> EventLog:
+        ...
+
+class EventLog:
+
+    def __len__(self) -> int:
+        ...
+
+    @property
+    def rows(self) -> list[tuple]:
         ...
 
 class AxialVibrationRig:

@@ -13,6 +13,32 @@
 
 namespace frictionsim {
 
+namespace detail {
+/// What the bristle laws (LuGre, ElastoPlastic) share: the rules on their common parameters, the steady sliding
+/// level g(v) = N (mu_c + (mu_s - mu_c) exp(-(v/v_s)^2)) and its slope dg/dv.
+template <class Params>
+void validate_bristles(const char* owner, const Params& p) {
+    require_positive(owner, "coulomb_coefficient", p.coulomb_coefficient);
+    require_at_least(owner, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
+                     ">= coulomb_coefficient and finite");
+    require_positive(owner, "stribeck_velocity", p.stribeck_velocity);
+    require_positive(owner, "bristle_stiffness", p.bristle_stiffness);
+    require_non_negative(owner, "bristle_damping", p.bristle_damping);
+    require_non_negative(owner, "viscous_damping", p.viscous_damping);
+}
+template <class Params>
+double stribeck_level(const Params& p, double v_r, double normal_force) {
+    const double r = v_r / p.stribeck_velocity;
+    return normal_force * (p.coulomb_coefficient + (p.static_coefficient - p.coulomb_coefficient) * std::exp(-r * r));
+}
+template <class Params>
+double stribeck_level_slope(const Params& p, double v_r, double normal_force) {
+    const double r = v_r / p.stribeck_velocity;
+    return -normal_force * (p.static_coefficient - p.coulomb_coefficient) * std::exp(-r * r) * 2.0 * r /
+           p.stribeck_velocity;
+}
+}  // namespace detail
+
 class LuGre {
 public:
     static constexpr const char* name = "LuGre";
@@ -31,23 +57,13 @@ public:
         double viscous_damping = 0.4;       ///< sigma2, N s/m
     };
 
-    explicit LuGre(const Params& p) : p_(p) {
-        detail::require_positive(name, "coulomb_coefficient", p.coulomb_coefficient);
-        detail::require_at_least(name, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
-                                 ">= coulomb_coefficient and finite");
-        detail::require_positive(name, "stribeck_velocity", p.stribeck_velocity);
-        detail::require_positive(name, "bristle_stiffness", p.bristle_stiffness);
-        detail::require_non_negative(name, "bristle_damping", p.bristle_damping);
-        detail::require_non_negative(name, "viscous_damping", p.viscous_damping);
-    }
+    explicit LuGre(const Params& p) : p_(p) { detail::validate_bristles(name, p); }
 
     const Params& params() const { return p_; }
 
     /// Steady-state sliding level g(v) (N) at normal force N.
     double stribeck_level(double v_r, double normal_force) const {
-        const double r = v_r / p_.stribeck_velocity;
-        return normal_force *
-               (p_.coulomb_coefficient + (p_.static_coefficient - p_.coulomb_coefficient) * std::exp(-r * r));
+        return detail::stribeck_level(p_, v_r, normal_force);
     }
     void state_derivative(double v_r, double normal_force, const double* z, int /*branch*/, double* dz) const {
         dz[0] = v_r - p_.bristle_stiffness * std::abs(v_r) * z[0] / stribeck_level(v_r, normal_force);
@@ -60,9 +76,7 @@ public:
 
     StatePartials<1> partials(double v_r, double normal_force, const double* z, int /*branch*/) const {
         const double g = stribeck_level(v_r, normal_force);
-        const double r = v_r / p_.stribeck_velocity;
-        const double dg = -normal_force * (p_.static_coefficient - p_.coulomb_coefficient) * std::exp(-r * r) * 2.0 * r /
-                          p_.stribeck_velocity;
+        const double dg = detail::stribeck_level_slope(p_, v_r, normal_force);
         const double s0 = p_.bristle_stiffness;
         // dz/dt = v - s0 |v| z / g(v):  d/dv (|v| / g) = sgn(v) / g - |v| g' / g^2
         const double d_ratio = sign_of(v_r) / g - std::abs(v_r) * dg / (g * g);

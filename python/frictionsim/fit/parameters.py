@@ -77,14 +77,16 @@ class _LawDef:
             factor = 1.0 - s1 * abs(velocity) / g
             z = force / s0 if abs(factor) < 1e-6 else (force - (s1 + s2) * velocity) / (s0 * factor)
             if self.key == "elasto_plastic":
-                # LuGre's z (alpha = 1) is exact in gross sliding; below break-away and while unloading alpha = 0
-                # and F = sigma0 z + (sigma1 + sigma2) v is. Once sigma1 |v| is a sizeable part of g both can
-                # match F, so LuGre's is kept where it lies past the ramp's middle (alpha >= 1/2) on the side of
-                # v: a record that starts in motion is sliding. The ramp has no closed-form inverse; LuGre's z
-                # is near enough there to start a run.
-                z_ba = physical["breakaway_fraction"] * physical["mu"] * normal_force / s0
+                # LuGre's z (alpha = 1) is exact in gross sliding, |z| >= z_max = mu N / sigma0 (a constant,
+                # Dupont et al. 2002; the steady z_ss = g / sigma0 >= z_max); below break-away and while unloading
+                # alpha = 0 and F = sigma0 z + (sigma1 + sigma2) v is. Once sigma1 |v| is a sizeable part of g
+                # both can match F, so LuGre's is kept where it lies past the ramp's middle (alpha >= 1/2) on the
+                # side of v: a record that starts in motion is sliding. The ramp has no closed-form inverse;
+                # LuGre's z is near enough there to start a run.
+                z_max = physical["mu"] * normal_force / s0
+                z_ba = physical["breakaway_fraction"] * z_max
                 elastic = (force - (s1 + s2) * velocity) / s0
-                sliding = z * velocity > 0.0 and abs(z) >= 0.5 * (z_ba + g / s0)
+                sliding = z * velocity > 0.0 and abs(z) >= 0.5 * (z_ba + z_max)
                 if not sliding and (abs(elastic) <= z_ba or elastic * velocity <= 0.0):
                     z = elastic
             return [z]
