@@ -45,6 +45,43 @@ double require_normal_force(double normal_force) {
     return detail::require_positive(ElastoPlastic::name, "normal_force", normal_force);
 }
 
+/// What LuGre and ElastoPlastic share in Python: the six bristle parameters (properties, repr, pickle) and g(v).
+template <class Law>
+void def_bristle_parameters(py::class_<Law>& c) {
+    c.def_property_readonly("mu", [](const Law& l) { return l.params().coulomb_coefficient; })
+        .def_property_readonly("mu_static", [](const Law& l) { return l.params().static_coefficient; })
+        .def_property_readonly("stribeck_velocity", [](const Law& l) { return l.params().stribeck_velocity; })
+        .def_property_readonly("bristle_stiffness", [](const Law& l) { return l.params().bristle_stiffness; })
+        .def_property_readonly("bristle_damping", [](const Law& l) { return l.params().bristle_damping; })
+        .def_property_readonly("viscous_damping", [](const Law& l) { return l.params().viscous_damping; })
+        .def("stribeck_level", &Law::stribeck_level, py::arg("v_r"), py::arg("normal_force"),
+             "Steady sliding level g(v_r) [N] at normal force F_N [N].");
+}
+template <class Params>
+std::string bristle_arguments(const Params& p) {
+    return "mu=" + format_double(p.coulomb_coefficient) + ", mu_static=" + format_double(p.static_coefficient) +
+           ", stribeck_velocity=" + format_double(p.stribeck_velocity) + ", bristle_stiffness=" +
+           format_double(p.bristle_stiffness) + ", bristle_damping=" + format_double(p.bristle_damping) +
+           ", viscous_damping=" + format_double(p.viscous_damping);
+}
+template <class Params>
+py::tuple bristle_state(const Params& p) {
+    return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity, p.bristle_stiffness,
+                          p.bristle_damping, p.viscous_damping);
+}
+/// Params from a pickled state: the six bristle parameters first.
+template <class Params>
+Params bristle_params(const py::tuple& t) {
+    Params p;
+    p.coulomb_coefficient = t[0].cast<double>();
+    p.static_coefficient = t[1].cast<double>();
+    p.stribeck_velocity = t[2].cast<double>();
+    p.bristle_stiffness = t[3].cast<double>();
+    p.bristle_damping = t[4].cast<double>();
+    p.viscous_damping = t[5].cast<double>();
+    return p;
+}
+
 }  // namespace
 
 void rethrow_with_python_names(const InvalidParameter& e) {
@@ -202,7 +239,7 @@ exponent : float
             [](const Dahl& d) { return py::make_tuple(d.friction_coefficient(), d.tangential_stiffness(), d.exponent()); },
             [](const py::tuple& t) { return Dahl(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>()); }));
 
-    py::class_<LuGre>(m, "LuGre", R"doc(
+    py::class_<LuGre> lugre(m, "LuGre", R"doc(
 LuGre friction (Canudas de Wit, Olsson, Astrom & Lischinsky 1995):
 
     dz/dt = v_r - sigma0 |v_r| z / g(v_r),  g(v) = F_N [mu + (mu_static - mu) exp(-(v/v_s)^2)],
@@ -222,39 +259,19 @@ bristle_damping : float
     sigma1 [N s/m], >= 0.
 viscous_damping : float
     sigma2 [N s/m], >= 0.
-)doc")
+)doc");
+    lugre
         .def(py::init([](double mu, double mu_static, double v_s, double sigma0, double sigma1, double sigma2) {
                  return constructing([&] { return LuGre(LuGre::Params{mu, mu_static, v_s, sigma0, sigma1, sigma2}); });
              }),
              py::arg("mu"), py::arg("mu_static"), py::arg("stribeck_velocity"), py::arg("bristle_stiffness"),
              py::arg("bristle_damping"), py::arg("viscous_damping") = 0.0)
-        .def_property_readonly("mu", [](const LuGre& l) { return l.params().coulomb_coefficient; })
-        .def_property_readonly("mu_static", [](const LuGre& l) { return l.params().static_coefficient; })
-        .def_property_readonly("stribeck_velocity", [](const LuGre& l) { return l.params().stribeck_velocity; })
-        .def_property_readonly("bristle_stiffness", [](const LuGre& l) { return l.params().bristle_stiffness; })
-        .def_property_readonly("bristle_damping", [](const LuGre& l) { return l.params().bristle_damping; })
-        .def_property_readonly("viscous_damping", [](const LuGre& l) { return l.params().viscous_damping; })
-        .def("stribeck_level", &LuGre::stribeck_level, py::arg("v_r"), py::arg("normal_force"),
-             "Steady sliding level g(v_r) [N] at normal force F_N [N].")
-        .def("__repr__", [](const LuGre& l) {
-            const auto& p = l.params();
-            return "LuGre(mu=" + format_double(p.coulomb_coefficient) + ", mu_static=" +
-                   format_double(p.static_coefficient) + ", stribeck_velocity=" + format_double(p.stribeck_velocity) +
-                   ", bristle_stiffness=" + format_double(p.bristle_stiffness) + ", bristle_damping=" +
-                   format_double(p.bristle_damping) + ", viscous_damping=" + format_double(p.viscous_damping) + ")";
-        })
-        .def(py::pickle(
-            [](const LuGre& l) {
-                const auto& p = l.params();
-                return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity,
-                                      p.bristle_stiffness, p.bristle_damping, p.viscous_damping);
-            },
-            [](const py::tuple& t) {
-                return LuGre(LuGre::Params{t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(),
-                                           t[3].cast<double>(), t[4].cast<double>(), t[5].cast<double>()});
-            }));
+        .def("__repr__", [](const LuGre& l) { return "LuGre(" + bristle_arguments(l.params()) + ")"; })
+        .def(py::pickle([](const LuGre& l) { return bristle_state(l.params()); },
+                        [](const py::tuple& t) { return LuGre(bristle_params<LuGre::Params>(t)); }));
+    def_bristle_parameters(lugre);
 
-    py::class_<ElastoPlastic>(m, "ElastoPlastic", R"doc(
+    py::class_<ElastoPlastic> elasto_plastic(m, "ElastoPlastic", R"doc(
 Elasto-plastic friction (Dupont, Hayward, Armstrong & Altpeter 2002): LuGre with a purely elastic presliding
 regime, so that small oscillations below break-away do not drift (LuGre creeps under them):
 
@@ -285,7 +302,8 @@ viscous_damping : float
 breakaway_fraction : float
     z_ba / z_max [-], in [0, 1). 0 starts the plastic ramp at z = 0 (LuGre-like when loading; unloading stays
     elastic).
-)doc")
+)doc");
+    elasto_plastic
         .def(py::init([](double mu, double mu_static, double v_s, double sigma0, double sigma1, double sigma2,
                          double breakaway_fraction) {
                  return constructing([&] {
@@ -295,16 +313,8 @@ breakaway_fraction : float
              }),
              py::arg("mu"), py::arg("mu_static"), py::arg("stribeck_velocity"), py::arg("bristle_stiffness"),
              py::arg("bristle_damping"), py::arg("viscous_damping") = 0.0, py::arg("breakaway_fraction") = 0.5)
-        .def_property_readonly("mu", [](const ElastoPlastic& l) { return l.params().coulomb_coefficient; })
-        .def_property_readonly("mu_static", [](const ElastoPlastic& l) { return l.params().static_coefficient; })
-        .def_property_readonly("stribeck_velocity", [](const ElastoPlastic& l) { return l.params().stribeck_velocity; })
-        .def_property_readonly("bristle_stiffness", [](const ElastoPlastic& l) { return l.params().bristle_stiffness; })
-        .def_property_readonly("bristle_damping", [](const ElastoPlastic& l) { return l.params().bristle_damping; })
-        .def_property_readonly("viscous_damping", [](const ElastoPlastic& l) { return l.params().viscous_damping; })
         .def_property_readonly("breakaway_fraction",
                                [](const ElastoPlastic& l) { return l.params().breakaway_fraction; })
-        .def("stribeck_level", &ElastoPlastic::stribeck_level, py::arg("v_r"), py::arg("normal_force"),
-             "Steady sliding level g(v_r) [N] at normal force F_N [N].")
         .def("plastic_deflection", [](const ElastoPlastic& l, double normal_force) {
             return l.plastic_deflection(require_normal_force(normal_force));
         }, py::arg("normal_force"), "z_max = mu F_N / sigma0 [m]: from it on the contact slides as LuGre's.")
@@ -321,25 +331,19 @@ breakaway_fraction : float
         }, py::arg("normal_force"), py::arg("z"), py::arg("branch"),
              "alpha(z) [-] at deflection z [m] and normal force F_N [N], on branch sgn(v_r) (+1 or -1).")
         .def("__repr__", [](const ElastoPlastic& l) {
-            const auto& p = l.params();
-            return "ElastoPlastic(mu=" + format_double(p.coulomb_coefficient) + ", mu_static=" +
-                   format_double(p.static_coefficient) + ", stribeck_velocity=" + format_double(p.stribeck_velocity) +
-                   ", bristle_stiffness=" + format_double(p.bristle_stiffness) + ", bristle_damping=" +
-                   format_double(p.bristle_damping) + ", viscous_damping=" + format_double(p.viscous_damping) +
-                   ", breakaway_fraction=" + format_double(p.breakaway_fraction) + ")";
+            return "ElastoPlastic(" + bristle_arguments(l.params()) +
+                   ", breakaway_fraction=" + format_double(l.params().breakaway_fraction) + ")";
         })
         .def(py::pickle(
             [](const ElastoPlastic& l) {
-                const auto& p = l.params();
-                return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity,
-                                      p.bristle_stiffness, p.bristle_damping, p.viscous_damping, p.breakaway_fraction);
+                return py::tuple(bristle_state(l.params()) + py::make_tuple(l.params().breakaway_fraction));
             },
             [](const py::tuple& t) {
-                return ElastoPlastic(ElastoPlastic::Params{t[0].cast<double>(), t[1].cast<double>(),
-                                                           t[2].cast<double>(), t[3].cast<double>(),
-                                                           t[4].cast<double>(), t[5].cast<double>(),
-                                                           t[6].cast<double>()});
+                auto p = bristle_params<ElastoPlastic::Params>(t);
+                p.breakaway_fraction = t[6].cast<double>();
+                return ElastoPlastic(p);
             }));
+    def_bristle_parameters(elasto_plastic);
 
     py::class_<PowerLawCoefficient>(m, "PowerLawCoefficient", R"doc(
 Cycle-averaged dynamic friction coefficient of paper 000 (eq 17, Table 5):
