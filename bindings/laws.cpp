@@ -308,7 +308,7 @@ breakaway_fraction : float
                          double breakaway_fraction) {
                  return constructing([&] {
                      return ElastoPlastic(
-                         ElastoPlastic::Params{mu, mu_static, v_s, sigma0, sigma1, sigma2, breakaway_fraction});
+                         ElastoPlastic::Params{{mu, mu_static, v_s, sigma0, sigma1, sigma2}, breakaway_fraction});
                  });
              }),
              py::arg("mu"), py::arg("mu_static"), py::arg("stribeck_velocity"), py::arg("bristle_stiffness"),

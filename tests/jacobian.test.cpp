@@ -144,7 +144,7 @@ TEST_CASE("torsional rig Jacobian: analytic = central differences, every disc an
         check_torsional(LuGre(LuGre::Params{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0}), {0});
     }
     SECTION("elasto-plastic") {
-        check_torsional(ElastoPlastic(ElastoPlastic::Params{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0, 0.5}),
+        check_torsional(ElastoPlastic(ElastoPlastic::Params{{0.22, 0.3453, 0.3, 1e5, 300.0, 0.0}, 0.5}),
                         {slip_negative, slip_positive});
     }
     SECTION("eq 6: stick band, both branches on both sides, hold") {

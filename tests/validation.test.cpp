@@ -77,8 +77,8 @@ void check_rules(const std::vector<Rule>& rules) {
 }
 
 /// Builder for aggregates of doubles: copy `valid`, set one field, hand it to `make`.
-template <class P, class Make>
-std::function<void(double)> with(const P& valid, double P::*field, Make make) {
+template <class P, class Field, class Make>
+std::function<void(double)> with(const P& valid, double Field::*field, Make make) {  // Field: P or a base of it
     return [=](double v) {
         P p = valid;
         p.*field = v;
@@ -150,18 +150,26 @@ TEST_CASE("Dahl rejects non-physical parameters, naming them; exponent 0 is vali
     CHECK(r.friction_force.back() == Approx(3e4 * 1e-3 * 0.05).epsilon(1e-8));
 }
 
-TEST_CASE("LuGre rejects every non-physical parameter, naming it", "[validation][lugre]") {
-    const LuGre::Params ok{};
-    const auto make = [](const LuGre::Params& p) { (void)LuGre(p); };
+namespace {
+/// The rules LuGre and ElastoPlastic share: their six bristle parameters (LuGre::Params, a base of the other's).
+template <class Law>
+std::vector<Rule> bristle_rules(const typename Law::Params& ok) {
+    const auto make = [](const typename Law::Params& p) { (void)Law(p); };
     using P = LuGre::Params;
-    check_rules({
+    return {
         {"coulomb_coefficient", not_positive, with(ok, &P::coulomb_coefficient, make)},
         {"static_coefficient", {0.99, 0.0, -1.0, kNaN, kInf, -kInf}, with(ok, &P::static_coefficient, make)},
         {"stribeck_velocity", not_positive, with(ok, &P::stribeck_velocity, make)},
         {"bristle_stiffness", not_positive, with(ok, &P::bristle_stiffness, make)},
         {"bristle_damping", negative_or_nonfinite, with(ok, &P::bristle_damping, make)},
         {"viscous_damping", negative_or_nonfinite, with(ok, &P::viscous_damping, make)},
-    });
+    };
+}
+}  // namespace
+
+TEST_CASE("LuGre rejects every non-physical parameter, naming it", "[validation][lugre]") {
+    const LuGre::Params ok{};
+    check_rules(bristle_rules<LuGre>(ok));
     LuGre::Params edge = ok;
     edge.static_coefficient = edge.coulomb_coefficient;
     edge.bristle_damping = 0.0;
@@ -171,17 +179,15 @@ TEST_CASE("LuGre rejects every non-physical parameter, naming it", "[validation]
 
 TEST_CASE("ElastoPlastic rejects every non-physical parameter, naming it", "[validation][elasto_plastic]") {
     const ElastoPlastic::Params ok{};
-    const auto make = [](const ElastoPlastic::Params& p) { (void)ElastoPlastic(p); };
-    using P = ElastoPlastic::Params;
-    check_rules({
-        {"coulomb_coefficient", not_positive, with(ok, &P::coulomb_coefficient, make)},
-        {"static_coefficient", {0.99, 0.0, -1.0, kNaN, kInf, -kInf}, with(ok, &P::static_coefficient, make)},
-        {"stribeck_velocity", not_positive, with(ok, &P::stribeck_velocity, make)},
-        {"bristle_stiffness", not_positive, with(ok, &P::bristle_stiffness, make)},
-        {"bristle_damping", negative_or_nonfinite, with(ok, &P::bristle_damping, make)},
-        {"viscous_damping", negative_or_nonfinite, with(ok, &P::viscous_damping, make)},
-        {"breakaway_fraction", {-0.1, 1.0, 1.5, kNaN, kInf, -kInf}, with(ok, &P::breakaway_fraction, make)},
-    });
+    std::vector<Rule> rules = bristle_rules<ElastoPlastic>(ok);
+    rules.push_back({"breakaway_fraction", {-0.1, 1.0, 1.5, kNaN, kInf, -kInf},
+                     with(ok, &ElastoPlastic::Params::breakaway_fraction, [](const ElastoPlastic::Params& p) {
+                         (void)ElastoPlastic(p);
+                     })});
+    check_rules(rules);
+    ElastoPlastic::Params edge = ok;
+    edge.breakaway_fraction = 0.0;
+    CHECK_NOTHROW(ElastoPlastic(edge));
 }
 
 #ifdef FRICTIONSIM_TEST_POWER_LAW

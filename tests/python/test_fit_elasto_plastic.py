@@ -11,6 +11,7 @@ import pytest
 
 import frictionsim as fs
 from frictionsim.fit import LAW_PARAMETERS, identify, identify_elasto_plastic
+from test_identify import check_recovered  # the same acceptance as LuGre's round trip
 
 N = 90.0  # F_N [N]
 TRUTH = dict(mu=0.3, mu_static=0.45, stribeck_velocity=0.01, bristle_stiffness=1e5, bristle_damping=300.0,
@@ -27,14 +28,6 @@ RTOL = dict(mu=0.01, mu_static=0.05, stribeck_velocity=0.05, bristle_stiffness=0
 def simulate(law, t, v, initial_state=None):
     rig = fs.KinematicRig(law, relative_velocity=(t, v), normal_force=N, initial_state=initial_state)
     return fs.simulate(rig, t[-1], output_times=t, t_start=t[0], rtol=1e-10, atol=1e-12)
-
-
-def check_recovered(result, truth, rtol):
-    """Each parameter within its relative tolerance and within 3 standard errors of the truth."""
-    for name, true in truth.items():
-        value, se = result.params[name], result.stderr[name]
-        assert value == pytest.approx(true, rel=rtol[name]), (name, value, true)
-        assert abs(value - true) <= 3.0 * se, (name, value, true, se)
 
 
 @pytest.fixture(scope="module")

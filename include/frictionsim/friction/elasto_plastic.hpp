@@ -34,13 +34,8 @@ public:
     static constexpr std::size_t state_count = 1;
     static constexpr std::array<const char*, 1> state_names{"bristle_deflection"};  ///< z, m
 
-    struct Params {
-        double coulomb_coefficient = 1.0;   ///< mu_c: Fc = mu_c N
-        double static_coefficient = 1.5;    ///< mu_s >= mu_c: Fs = mu_s N
-        double stribeck_velocity = 1e-3;    ///< v_s, m/s
-        double bristle_stiffness = 1e5;     ///< sigma0, N/m
-        double bristle_damping = 316.2277660168379;  ///< sigma1, N s/m
-        double viscous_damping = 0.4;       ///< sigma2, N s/m
+    /// LuGre's parameters (and defaults), and where the plastic ramp starts.
+    struct Params : LuGre::Params {
         /// z_ba / z_max in [0, 1). 0 starts the plastic ramp at z = 0: LuGre-like on loading, still elastic when
         /// unloading.
         double breakaway_fraction = 0.5;
