@@ -65,7 +65,9 @@ def test_compare_quick_runs_and_every_timed_answer_is_accurate(tmp_path):
             assert index == len(scanned) - 1 or entry["scan"][index + 1]["ok"]
         for entry in scenario["entries"]:  # an entry is timed, skipped with a reason, or says why it stopped
             assert entry["timing"] is not None or entry["skipped"] or entry["stop_reason"]
-        assert scenario["python_vs_cpp"]["equal accuracy"]["ratio"] > 0
+        paired = scenario["python_vs_cpp"]["equal accuracy"]
+        assert paired["ratio"] == min(paired["python_samples"]) / min(paired["cpp_samples"]) > 0
+        assert len(paired["round_ratios"]) == scenario["python_vs_cpp"]["rounds"]  # timed side by side
 
     sweep = results["sweep"]
     assert sweep["identical"] and sweep["failed"] == 0 and sweep["speedup"] > 0
