@@ -413,7 +413,7 @@ class FrictionsimCpp(Tool):
                        found.error)
 
     def time(self, k: int, outcome: Outcome, settings: Settings) -> Timing:
-        return self.bench.time(self.scenario, self.method, k)
+        return self.bench.time(self.scenario, self.method, k, repeats=settings.repeats)
 
 
 # ---------------------------------------------------------------------------------------------- frictionsim Python
@@ -981,7 +981,7 @@ def python_vs_cpp(scenario, entries: Sequence[Entry], settings: Settings) -> Dic
     for label, k in points:
         cpp_samples, py_samples = [], []
         for _ in range(max(1, settings.paired_rounds)):
-            cpp_samples.append(cpp.tool.bench.time(scenario, cpp.tool.method, k, repeats=1).seconds)
+            cpp_samples.append(cpp.tool.time(k, Outcome(k), one_batch).seconds)
             py_samples.append(py_tool.time(k, Outcome(k), one_batch).seconds)
         out[label] = {"K": k, "rtol": rtol_of(k), "python_seconds": min(py_samples), "cpp_seconds": min(cpp_samples),
                       "ratio": min(py_samples) / min(cpp_samples),

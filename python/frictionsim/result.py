@@ -64,7 +64,6 @@ class Result:
         # turned into tuples and Event objects on first access: a run with hundreds of switches would otherwise
         # spend 2 % of a millisecond-long simulation making them (bench/compare.py measured it)
         self._event_log: Optional["_core.EventLog"] = raw.take_event_log()
-        self._event_rows: Optional[List[tuple]] = None
         self._events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
@@ -76,18 +75,13 @@ class Result:
     @property
     def events(self) -> List[Event]:
         """The event log: every located switch, in order."""
-        if self._events is None:
-            self._events = [Event(*row) for row in self._rows()]
+        if self._events is None:  # threads racing here build equal lists: no lock needed
+            self._events = [Event(*row) for row in self._event_log.rows]
         return self._events
-
-    def _rows(self) -> List[tuple]:
-        if self._event_rows is None:
-            self._event_rows = self._event_log.rows  # threads racing here build equal lists: no lock needed
-        return self._event_rows
 
     def __getstate__(self) -> dict:
         state = self.__dict__.copy()
-        state["_event_rows"] = self._rows()  # the engine's event log does not pickle: its rows do
+        state["_events"] = self.events  # the engine's event log does not pickle: the Events do
         state["_event_log"] = None
         return state
 
