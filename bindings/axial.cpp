@@ -113,18 +113,17 @@ initial_velocity : float            x'(0) [m/s]
         .def("_simulate", [](const AxialVibrationRig& r, double t_end, const SolverOptions& options, double t_start) {
             return simulate_variant(r.rig, t_end, options, t_start);
         })
-        .def(py::pickle(
-            [](const AxialVibrationRig& r) {
-                const AxialRigParams& p = r.params;
-                return py::make_tuple(friction_law_to_python(r.friction), p.mass, p.drive_stiffness, p.sliding_velocity,
-                                      p.amplitude, p.frequency, p.normal_force, p.gravity,
-                                      p.gravitational_acceleration, p.initial_position, p.initial_velocity);
-            },
-            [](const py::tuple& s) {
-                return make_rig(s[0], s[1].cast<double>(), s[2].cast<double>(), s[3].cast<double>(),
-                                s[4].cast<double>(), s[5].cast<double>(), s[6].cast<double>(), s[7].cast<bool>(),
-                                s[8].cast<double>(), s[9].cast<std::optional<double>>(), s[10].cast<double>());
-            }))
+        .def("__reduce__", [](py::handle self) {
+            const auto& r = self.cast<const AxialVibrationRig&>();
+            const AxialRigParams& p = r.params;
+            return reduce_by_construction(
+                self, py::make_tuple(friction_law_to_python(r.friction)),
+                py::dict(py::arg("mass") = p.mass, py::arg("drive_stiffness") = p.drive_stiffness,
+                         py::arg("sliding_velocity") = p.sliding_velocity, py::arg("amplitude") = p.amplitude,
+                         py::arg("frequency") = p.frequency, py::arg("normal_force") = p.normal_force,
+                         py::arg("gravity") = p.gravity, py::arg("gravitational_acceleration") = p.gravitational_acceleration,
+                         py::arg("initial_position") = p.initial_position, py::arg("initial_velocity") = p.initial_velocity));
+        })
         .def("__repr__", [](const AxialVibrationRig& r) {
             const AxialRigParams& p = r.params;
             return "AxialVibrationRig(friction=" + std::string(py::repr(friction_law_to_python(r.friction))) +

@@ -16,6 +16,16 @@ namespace frictionsim::python {
 
 namespace py = pybind11;
 
+/// Raises TypeError when `self` skipped __init__ (`cls.__new__(cls)`, a pickle without state): pybind11 would hand
+/// out uninitialised memory as its C++ value (garbage parameters, then a crash in simulate()).
+void require_constructed(py::handle self);
+
+/// `__reduce__` of a class that its constructor rebuilds: unpickling calls `cls(*args, **kwargs)` (or the static
+/// factory `cls.<factory>(...)`) through `_core._rebuild`, so a restored object passes exactly the checks, keyword
+/// names and errors of construction, and there is no `__setstate__` to skip them or to call on a live object.
+py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwargs = py::dict(),
+                                 const char* factory = "");
+
 /// Every instantaneous friction law a rig can run with. One variant alternative per law: the rigs are
 /// instantiated once per law, the right-hand side stays free of virtual calls.
 using FrictionLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic>;

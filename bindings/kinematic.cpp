@@ -75,7 +75,29 @@ double Signal::operator()(double t) const {
     double v;
     {
         py::gil_scoped_acquire gil;
-        v = (*function_)(t).cast<double>();
+        py::object out;
+        try {
+            out = (*function_)(t);
+        } catch (py::error_already_set& e) {
+            // KeyboardInterrupt, SystemExit: the caller's, not the model's. Put it back as the pending error and
+            // stop the run; simulate() raises it unchanged.
+            if (!e.matches(PyExc_Exception)) {
+                e.restore();
+                throw Interrupted(name_ + "(t) raised a BaseException", t);
+            }
+            throw;
+        }
+        // a real number: float, int, NumPy scalar (not bool, str, None, a sequence)
+        if (PyBool_Check(out.ptr()) || !(PyFloat_Check(out.ptr()) || PyLong_Check(out.ptr()) ||
+                                         (PyNumber_Check(out.ptr()) && !py::isinstance<py::sequence>(out) &&
+                                          py::hasattr(out, "__float__")))) {
+            std::ostringstream msg;
+            msg.precision(17);
+            msg << "KinematicRig: " << name_ << "(t) must return a real number (got "
+                << std::string(py::str(py::type::of(out).attr("__name__"))) << " at t = " << t << " s)";
+            throw InvalidParameter(name_, msg.str());
+        }
+        v = py::float_(out).cast<double>();
     }
     if (!std::isfinite(v)) {
         std::ostringstream msg;
@@ -215,23 +237,21 @@ initial_state : sequence of float, optional
             r.require_covered(t_start, t_end);
             return simulate_variant(r.rig, t_end, options, t_start);
         })
-        .def(py::pickle(
-            [](const KinematicRigPy& r) {
-                const bool harmonic = r.relative_velocity.kind() == Signal::Kind::harmonic;
-                const py::object v = harmonic ? py::make_tuple(r.relative_velocity.to_python()[py::int_(0)],
-                                                               r.relative_velocity.to_python()[py::int_(1)], *r.frequency)
-                                              : r.relative_velocity.to_python();
-                return py::make_tuple(friction_law_to_python(r.friction), harmonic, v,
-                                      r.normal_force.to_python(), r.initial_state);
-            },
-            [](const py::tuple& s) {
-                const auto z0 = s[4].cast<std::optional<std::vector<double>>>();
-                if (s[1].cast<bool>()) {
-                    const py::tuple h = s[2];  // (v_d, v_a, f): f, not w, so the rebuilt rig is bit-identical
-                    return make_harmonic(s[0], h[0].cast<double>(), h[1].cast<double>(), h[2].cast<double>(), s[3], z0);
-                }
-                return make_rig(s[0], s[2], s[3], z0);
-            }))
+        .def("__reduce__", [](py::handle self) {
+            const auto& r = self.cast<const KinematicRigPy&>();
+            py::dict kwargs(py::arg("normal_force") = r.normal_force.to_python(),
+                            py::arg("initial_state") = r.initial_state);
+            if (r.relative_velocity.kind() != Signal::Kind::harmonic) {
+                kwargs["relative_velocity"] = r.relative_velocity.to_python();
+                return reduce_by_construction(self, py::make_tuple(friction_law_to_python(r.friction)), kwargs);
+            }
+            // f, not w = 2 pi f, so that the rebuilt rig is bit-identical
+            const py::tuple h = r.relative_velocity.to_python();
+            kwargs["sliding_velocity"] = h[0];
+            kwargs["velocity_amplitude"] = h[1];
+            kwargs["frequency"] = *r.frequency;
+            return reduce_by_construction(self, py::make_tuple(friction_law_to_python(r.friction)), kwargs, "harmonic");
+        })
         .def("__repr__", [](const KinematicRigPy& r) {
             return "KinematicRig(friction=" + std::string(py::repr(friction_law_to_python(r.friction))) + ")";
         });

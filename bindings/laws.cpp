@@ -69,18 +69,6 @@ py::tuple bristle_state(const Params& p) {
     return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity, p.bristle_stiffness,
                           p.bristle_damping, p.viscous_damping);
 }
-/// Params from a pickled state: the six bristle parameters first.
-template <class Params>
-Params bristle_params(const py::tuple& t) {
-    Params p;
-    p.coulomb_coefficient = t[0].cast<double>();
-    p.static_coefficient = t[1].cast<double>();
-    p.stribeck_velocity = t[2].cast<double>();
-    p.bristle_stiffness = t[3].cast<double>();
-    p.bristle_damping = t[4].cast<double>();
-    p.viscous_damping = t[5].cast<double>();
-    return p;
-}
 
 }  // namespace
 
@@ -104,6 +92,7 @@ void rethrow_with_python_names(const InvalidParameter& e) {
 }
 
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter) {
+    require_constructed(law);
     if (py::isinstance<Coulomb>(law)) return law.cast<Coulomb>();
     if (py::isinstance<Stribeck>(law)) return law.cast<Stribeck>();
     if (py::isinstance<Dahl>(law)) return law.cast<Dahl>();
@@ -146,8 +135,10 @@ mu_static : float, optional
             return "Coulomb(mu=" + format_double(c.friction_coefficient()) +
                    ", mu_static=" + format_double(c.static_coefficient()) + ")";
         })
-        .def(py::pickle([](const Coulomb& c) { return py::make_tuple(c.friction_coefficient(), c.static_coefficient()); },
-                        [](const py::tuple& s) { return Coulomb(s[0].cast<double>(), s[1].cast<double>()); }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& c = self.cast<const Coulomb&>();
+            return reduce_by_construction(self, py::make_tuple(c.friction_coefficient(), c.static_coefficient()));
+        });
 
     py::class_<Stribeck>(m, "Stribeck", R"doc(
 Stribeck friction with exact stick, or a Karnopp band (Karnopp 1985).
@@ -196,16 +187,12 @@ karnopp_band : float
                    ", shape_exponent=" + format_double(p.shape_exponent) + ", viscous_coefficient=" +
                    format_double(p.viscous_coefficient) + ", karnopp_band=" + format_double(p.karnopp_band) + ")";
         })
-        .def(py::pickle(
-            [](const Stribeck& s) {
-                const auto& p = s.params();
-                return py::make_tuple(p.coulomb_coefficient, p.static_coefficient, p.stribeck_velocity,
-                                      p.shape_exponent, p.viscous_coefficient, p.karnopp_band);
-            },
-            [](const py::tuple& t) {
-                return Stribeck(Stribeck::Params{t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>(),
-                                                 t[3].cast<double>(), t[4].cast<double>(), t[5].cast<double>()});
-            }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& p = self.cast<const Stribeck&>().params();
+            return reduce_by_construction(self, py::make_tuple(p.coulomb_coefficient, p.static_coefficient,
+                                                               p.stribeck_velocity, p.shape_exponent,
+                                                               p.viscous_coefficient, p.karnopp_band));
+        });
 
     py::class_<Dahl>(m, "Dahl", R"doc(
 Dahl friction (paper 000, eq 9; Dahl 1968): a bristle deflection z with
@@ -235,9 +222,11 @@ exponent : float
             return "Dahl(mu=" + format_double(d.friction_coefficient()) + ", tangential_stiffness=" +
                    format_double(d.tangential_stiffness()) + ", exponent=" + format_double(d.exponent()) + ")";
         })
-        .def(py::pickle(
-            [](const Dahl& d) { return py::make_tuple(d.friction_coefficient(), d.tangential_stiffness(), d.exponent()); },
-            [](const py::tuple& t) { return Dahl(t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>()); }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& d = self.cast<const Dahl&>();
+            return reduce_by_construction(
+                self, py::make_tuple(d.friction_coefficient(), d.tangential_stiffness(), d.exponent()));
+        });
 
     py::class_<LuGre> lugre(m, "LuGre", R"doc(
 LuGre friction (Canudas de Wit, Olsson, Astrom & Lischinsky 1995):
@@ -267,8 +256,9 @@ viscous_damping : float
              py::arg("mu"), py::arg("mu_static"), py::arg("stribeck_velocity"), py::arg("bristle_stiffness"),
              py::arg("bristle_damping"), py::arg("viscous_damping") = 0.0)
         .def("__repr__", [](const LuGre& l) { return "LuGre(" + bristle_arguments(l.params()) + ")"; })
-        .def(py::pickle([](const LuGre& l) { return bristle_state(l.params()); },
-                        [](const py::tuple& t) { return LuGre(bristle_params<LuGre::Params>(t)); }));
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, bristle_state(self.cast<const LuGre&>().params()));
+        });
     def_bristle_parameters(lugre);
 
     py::class_<ElastoPlastic> elasto_plastic(m, "ElastoPlastic", R"doc(
@@ -334,15 +324,10 @@ breakaway_fraction : float
             return "ElastoPlastic(" + bristle_arguments(l.params()) +
                    ", breakaway_fraction=" + format_double(l.params().breakaway_fraction) + ")";
         })
-        .def(py::pickle(
-            [](const ElastoPlastic& l) {
-                return py::tuple(bristle_state(l.params()) + py::make_tuple(l.params().breakaway_fraction));
-            },
-            [](const py::tuple& t) {
-                auto p = bristle_params<ElastoPlastic::Params>(t);
-                p.breakaway_fraction = t[6].cast<double>();
-                return ElastoPlastic(p);
-            }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& p = self.cast<const ElastoPlastic&>().params();
+            return reduce_by_construction(self, py::tuple(bristle_state(p) + py::make_tuple(p.breakaway_fraction)));
+        });
     def_bristle_parameters(elasto_plastic);
 
     py::class_<PowerLawCoefficient>(m, "PowerLawCoefficient", R"doc(
@@ -383,11 +368,10 @@ exponent : float
             return "PowerLawCoefficient(eta=" + format_double(p.params().eta) +
                    ", exponent=" + format_double(p.params().exponent) + ")";
         })
-        .def(py::pickle(
-            [](const PowerLawCoefficient& p) { return py::make_tuple(p.params().eta, p.params().exponent); },
-            [](const py::tuple& t) {
-                return PowerLawCoefficient(PowerLawCoefficient::Params{t[0].cast<double>(), t[1].cast<double>()});
-            }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& p = self.cast<const PowerLawCoefficient&>().params();
+            return reduce_by_construction(self, py::make_tuple(p.eta, p.exponent));
+        });
 
     m.def("vibration_velocity_amplitude", py::vectorize(&frictionsim::vibration_velocity_amplitude),
           py::arg("amplitude"), py::arg("frequency"), "v_a = 2 pi f u0 [m/s] (paper 000, eq 16).");

@@ -2,9 +2,63 @@
 // python/frictionsim/ re-export these classes and add what NumPy/SciPy do well (fitting, signals, plots).
 #include "common.hpp"
 
+namespace frictionsim::python {
+
+void require_constructed(py::handle self) {
+    // only pybind11 instances have a holder to check (a law argument may be anything)
+    if (!PyObject_IsInstance(self.ptr(), py::detail::get_internals().instance_base)) return;
+    auto* inst = reinterpret_cast<py::detail::instance*>(self.ptr());
+    if (!inst->get_value_and_holder().holder_constructed()) {
+        const std::string type = py::str(py::type::of(self).attr("__name__"));
+        throw py::type_error(type + " object was never constructed (made by " + type +
+                             ".__new__ or an incomplete pickle): build it with " + type + "(...)");
+    }
+}
+
+namespace {
+
+/// Every class of the module checks construction on attribute access (methods, properties, pickling) and in repr,
+/// the ways Python reaches an instance's C++ value; the functions that take instances as arguments (the rigs'
+/// friction) call require_constructed themselves.
+void guard_construction(py::module_& m) {
+    for (const auto item : m.attr("__dict__").cast<py::dict>()) {
+        const py::handle cls = item.second;
+        if (!PyType_Check(cls.ptr()) || !py::hasattr(cls, "__module__") ||
+            cls.attr("__module__").cast<std::string>() != "frictionsim._core" ||
+            !PyObject_IsInstance(cls.ptr(), reinterpret_cast<PyObject*>(py::detail::get_internals().default_metaclass)))
+            continue;
+        const py::object repr = cls.attr("__repr__");
+        py::setattr(cls, "__getattribute__", py::cpp_function([](py::handle self, py::handle name) {
+            require_constructed(self);
+            PyObject* value = PyObject_GenericGetAttr(self.ptr(), name.ptr());
+            if (value == nullptr) throw py::error_already_set();
+            return py::reinterpret_steal<py::object>(value);
+        }, py::is_method(cls), py::name("__getattribute__")));
+        py::setattr(cls, "__repr__", py::cpp_function([repr](py::handle self) {
+            require_constructed(self);
+            return repr(self);
+        }, py::is_method(cls), py::name("__repr__")));
+    }
+}
+
+}  // namespace
+
+py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwargs, const char* factory) {
+    const py::object rebuild = py::module_::import("frictionsim._core").attr("_rebuild");
+    return py::make_tuple(rebuild, py::make_tuple(py::type::of(self), std::move(args), std::move(kwargs), factory));
+}
+
+}  // namespace frictionsim::python
+
 PYBIND11_MODULE(_core, m) {
     using namespace frictionsim::python;
     m.doc() = "frictionsim C++ engine: friction laws, rigs and the hybrid (stick-slip) integrator.";
+    m.def("_rebuild", [](const py::type& cls, const py::tuple& args, const py::dict& kwargs, const std::string& factory) {
+        if (cls.attr("__module__").cast<std::string>() != "frictionsim._core")
+            throw py::type_error("_rebuild: only frictionsim._core classes are rebuilt");
+        const py::object make = factory.empty() ? py::object(cls) : py::object(cls.attr(factory.c_str()));
+        return make(*args, **kwargs);
+    }, "Unpickling: cls(*args, **kwargs), or cls.<factory>(...), through the validating constructor.");
     register_errors(m);
     register_laws(m);
     register_results(m);
@@ -12,4 +66,5 @@ PYBIND11_MODULE(_core, m) {
     register_kinematic(m);
     register_contact(m);
     register_torsional(m);
+    guard_construction(m);
 }

@@ -37,11 +37,24 @@ py::object partial_result(const SimulationError& e) {
 
 }  // namespace
 
+bool python_signal_raised() {
+    py::gil_scoped_acquire gil;
+    return PyErr_CheckSignals() != 0;
+}
+
+void raise_pending_python_error() {
+    if (!PyErr_Occurred()) PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+}
+
 void register_errors(py::module_&) {
     // Order matters: the most derived C++ class first.
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);
+        } catch (const BudgetExceeded& e) {
+            const py::object type = python_error("BudgetExceededError");
+            raise(type, type(e.what(), e.time_reached(), partial_result(e), e.budget()));
         } catch (const ChatteringError& e) {
             const py::object type = python_error("ChatteringError");
             raise(type, type(e.what(), e.time_reached(), partial_result(e), e.switching_function()));
@@ -75,7 +88,12 @@ void register_results(py::module_& m) {
         .def_readwrite("output_times", &SolverOptions::output_times)
         .def_readwrite("record_steps", &SolverOptions::record_steps)
         .def_readwrite("max_events_in_window", &SolverOptions::max_events_in_window)
-        .def_readwrite("event_window", &SolverOptions::event_window);
+        .def_readwrite("event_window", &SolverOptions::event_window)
+        .def_readwrite("timeout", &SolverOptions::timeout)
+        .def_readwrite("max_output_rows", &SolverOptions::max_output_rows)
+        .def_readonly_static("max_rtol", &SolverOptions::max_rtol)
+        .def_readonly_static("reliable_rtol", &SolverOptions::reliable_rtol)
+        .def_readonly_static("min_atol", &SolverOptions::min_atol);
 
     py::class_<Event>(m, "Event", "One switch of the hybrid system (a stick-slip transition, a velocity reversal).")
         .def_readonly("time", &Event::time, "t [s]")
@@ -126,6 +144,7 @@ void register_results(py::module_& m) {
                             py::arg("restarts") = s.restarts, py::arg("events") = s.events);
         })
         .def_readonly("completed", &Result::completed)
+        .def_readonly("warnings", &Result::warnings)
         .def_readonly("t_reached", &Result::t_reached);
 
     // Cycle means (analysis/cycle_mean.hpp): one implementation for C++ and Python.

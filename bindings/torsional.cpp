@@ -49,6 +49,7 @@ using TorsionalVariant = std::variant<Torsional<Coulomb>, Torsional<Stribeck>, T
                                       Torsional<ElastoPlastic>, Torsional<HystereticFriction>>;
 
 TorsionalLaw torsional_law_from_python(py::handle law) {
+    require_constructed(law);
     if (py::isinstance<HystereticFriction>(law)) return law.cast<HystereticFriction>();
     if (py::isinstance<Coulomb>(law) || py::isinstance<Stribeck>(law) || py::isinstance<Dahl>(law) ||
         py::isinstance<LuGre>(law) || py::isinstance<ElastoPlastic>(law))
@@ -232,16 +233,12 @@ branch_gap : {"hold", "error"}
                    ", reference_normal_force=" + format(p.reference_normal_force) + ", branch_gap='" +
                    branch_gap_name(p.branch_gap) + "')";
         })
-        .def(py::pickle(
-            [](const HystereticFriction& h) {
-                const auto& p = h.params();
-                return py::make_tuple(p.stick_slope, to_tuple(p.accelerating), to_tuple(p.decelerating), p.stick_speed,
-                                      p.reference_normal_force, branch_gap_name(p.branch_gap));
-            },
-            [](const py::tuple& t) {
-                return make_hysteretic(t[0].cast<double>(), t[1].cast<Polynomial>(), t[2].cast<Polynomial>(),
-                                       t[3].cast<double>(), t[4].cast<double>(), t[5].cast<std::string>());
-            }));
+        .def("__reduce__", [](py::handle self) {
+            const auto& p = self.cast<const HystereticFriction&>().params();
+            return reduce_by_construction(self, py::make_tuple(p.stick_slope, to_tuple(p.accelerating),
+                                                               to_tuple(p.decelerating), p.stick_speed,
+                                                               p.reference_normal_force, branch_gap_name(p.branch_gap)));
+        });
 
     m.def("paper001_fig7_friction", [](const std::string& branch_gap) {
         return paper001_fig7_friction(branch_gap_from(branch_gap));
@@ -314,13 +311,12 @@ Keywords
         .def("_simulate", [](const TorsionalDrillStringRig& r, double t_end, const SolverOptions& options, double t_start) {
             return simulate_variant(r.rig, t_end, options, t_start);
         })
-        .def(py::pickle(
-            [](const TorsionalDrillStringRig& r) {
-                py::dict params;
-                for (const Field& f : fields) params[f.name] = r.params.*f.member;
-                return py::make_tuple(law_to_python(r.friction), params);
-            },
-            [](const py::tuple& s) { return make_rig(s[0], s[1].cast<py::kwargs>()); }))
+        .def("__reduce__", [](py::handle self) {
+            const auto& r = self.cast<const TorsionalDrillStringRig&>();
+            py::dict params;
+            for (const Field& f : fields) params[f.name] = r.params.*f.member;
+            return reduce_by_construction(self, py::make_tuple(law_to_python(r.friction)), params);
+        })
         .def("__repr__", [](const TorsionalDrillStringRig& r) {
             std::string out = "TorsionalRig(friction=" + std::string(py::repr(law_to_python(r.friction)));
             const TorsionalRigParams d;

@@ -37,6 +37,24 @@ private:
     std::shared_ptr<const Result> partial_;
 };
 
+/// A budget of the run ran out: `budget()` names the option (timeout, max_output_rows); the partial result is kept.
+class BudgetExceeded : public SimulationError {
+public:
+    BudgetExceeded(const std::string& message, double time_reached, std::string budget)
+        : SimulationError(message, time_reached), budget_(std::move(budget)) {}
+    const std::string& budget() const noexcept { return budget_; }
+
+private:
+    std::string budget_;
+};
+
+/// The run was asked to stop (SolverOptions::interrupt returned true, or a signal callback of the caller's
+/// raised): not a failure of the model. Carries the time reached and the partial result like any stop.
+class Interrupted : public SimulationError {
+public:
+    using SimulationError::SimulationError;
+};
+
 /// More switches than the chattering bound allows in one time window (Zeno behaviour or chattering).
 class ChatteringError : public SimulationError {
 public:

@@ -24,7 +24,7 @@ from ._core import (
     table5,
     vibration_velocity_amplitude,
 )
-from .errors import ChatteringError, InvalidParameterError, SimulationError
+from .errors import AccuracyWarning, BudgetExceededError, ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
 from .simulation import METHODS, simulate
 from .sweeps import SweepResult, sweep
@@ -35,7 +35,9 @@ __version__ = "0.1.0"
 FRICTION_LAWS = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic)
 
 __all__ = [
+    "AccuracyWarning",
     "AxialVibrationRig",
+    "BudgetExceededError",
     "ChatteringError",
     "Coulomb",
     "Dahl",

@@ -7,13 +7,20 @@ The C++ engine's exceptions arrive as these classes (translated in bindings/resu
   solution is valid and ``partial`` holds the :class:`frictionsim.Result` recorded up to it.
 * :class:`ChatteringError`: more switches than the chattering bound allows (Zeno behaviour);
   ``switching_function`` names the guard.
+* :class:`BudgetExceededError`: a budget of the run ran out (``budget`` names it: ``"timeout"``,
+  ``"max_output_rows"``); the partial result is kept like any stop.
+* :class:`AccuracyWarning`: a completed result that may be unreliable (a tolerance too loose for its error
+  estimate to mean anything); ``Result.warnings`` keeps the text.
+
+Ctrl-C during a run raises ``KeyboardInterrupt`` (never a SimulationError), and so does a ``KeyboardInterrupt`` or
+``SystemExit`` raised inside a Python callable the rig calls: they propagate unchanged.
 """
 
 from __future__ import annotations
 
 from typing import Any, Optional
 
-__all__ = ["InvalidParameterError", "SimulationError", "ChatteringError"]
+__all__ = ["InvalidParameterError", "SimulationError", "ChatteringError", "BudgetExceededError", "AccuracyWarning"]
 
 
 class InvalidParameterError(ValueError):
@@ -59,3 +66,19 @@ class ChatteringError(SimulationError):
 
     def __reduce__(self):
         return (type(self), (str(self), self.time_reached, self.partial, self.switching_function))
+
+
+class BudgetExceededError(SimulationError):
+    """A budget of the run ran out; ``budget`` names the option (``"timeout"``, ``"max_output_rows"``)."""
+
+    def __init__(self, message: str, time_reached: float, partial: Any = None, budget: str = "") -> None:
+        super().__init__(message, time_reached, partial)
+        self.budget = budget
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.time_reached, self.partial, self.budget))
+
+
+class AccuracyWarning(UserWarning):
+    """A completed result that may be unreliable, e.g. simulated at a tolerance looser than its error estimate
+    can vouch for."""

@@ -49,6 +49,9 @@ class Result:
         restarts, events.
     completed : bool
         False for the partial result of a failed run (see :class:`frictionsim.SimulationError`).
+    warnings : list of str
+        Why a completed result may be unreliable (e.g. a loose rtol); each was also issued as an
+        :class:`frictionsim.AccuracyWarning`.
     t_reached : float, s
     period : float or None, s
         The rig's vibration period, the default of :meth:`mean_over_cycles`.
@@ -67,6 +70,7 @@ class Result:
         self._events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
+        self.warnings: List[str] = list(raw.warnings)
         self.t_reached: float = float(raw.t_reached)
         self.period: Optional[float] = period
         for array in (self.t, self.states, self.friction_force, self.mode):

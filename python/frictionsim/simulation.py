@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import math
-from typing import Optional, Sequence, Union
+import numbers
+import warnings
+from typing import List, Optional, Sequence, Union
 
 import numpy as np
 
 from . import _core
-from .errors import SimulationError
+from .errors import AccuracyWarning, InvalidParameterError, SimulationError
 from .result import Result
 
 __all__ = ["simulate", "METHODS"]
@@ -23,12 +25,13 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
              atol_per_state: Optional[Sequence[float]] = None, output_times: Optional[Sequence[float]] = None,
              record_steps: bool = False, max_steps: int = 10_000_000, max_step: float = math.inf,
              initial_step: float = 0.0, max_events_in_window: int = 100, event_window: float = 1e-6,
-             t_start: float = 0.0) -> Result:
+             t_start: float = 0.0, timeout: Optional[float] = None,
+             max_output_rows: Optional[int] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
     there. The GIL is released while integrating, so runs in threads proceed in parallel and give results
-    identical to serial runs.
+    identical to serial runs. Ctrl-C stops a run within a fraction of a second as ``KeyboardInterrupt``.
 
     Parameters
     ----------
@@ -38,7 +41,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
         "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
         (measured faster on these rigs, see the README).
     rtol, atol : float
-        Relative and absolute tolerances (atol in the states' SI units).
+        Relative and absolute tolerances (atol in the states' SI units). rtol must lie in [1e-14, 0.1] and atol
+        be at least 1e-20; a result at rtol above 1e-3 carries an :class:`AccuracyWarning` (``Result.warnings``):
+        the error estimates no longer vouch for cycle means of stick-slip rigs there.
     atol_per_state : sequence of float, optional
         One absolute tolerance per state (overrides atol).
     output_times : sequence of float, s, optional
@@ -49,43 +54,89 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
         Step limits (max_step and initial_step in s; 0 lets the integrator choose).
     max_events_in_window, event_window
         Chattering bound: more than max_events_in_window switches within event_window [s] raises ChatteringError.
+    timeout : float, s, optional
+        Wall-clock budget of the run: past it :class:`BudgetExceededError` (``budget == "timeout"``) with the
+        results up to there.
+    max_output_rows : int, optional
+        Rows (and events) the result may hold; default the engine's (2,000,000). Past it
+        :class:`BudgetExceededError` (``budget == "max_output_rows"``), so a failing run cannot fill the memory.
 
     Raises
     ------
     InvalidParameterError (ValueError)
         A bad option or rig input, naming it.
     SimulationError
-        The run stopped early; ``.time_reached`` and ``.partial`` (the Result up to it).
+        The run stopped early; ``.time_reached`` and ``.partial`` (the Result up to it). Subclasses:
+        ChatteringError, BudgetExceededError.
+    KeyboardInterrupt
+        Ctrl-C, or raised by a Python callable of the rig (propagated unchanged, as is SystemExit).
     """
     if not isinstance(rig, (_core.AxialVibrationRig, _core.KinematicRig, _core.TorsionalRig)):
         raise TypeError(f"rig must be an AxialVibrationRig, a KinematicRig or a TorsionalRig, got {type(rig).__name__}")
-    if method not in METHODS:
-        raise ValueError(f"method must be one of {', '.join(METHODS)} (got {method!r})")
+    if not isinstance(method, str) or method not in METHODS:
+        raise InvalidParameterError(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
     options = _core.SolverOptions()
     options.method = getattr(_core.Method, method)
-    options.rtol = float(rtol)
-    options.atol = float(atol)
+    options.rtol = _real("rtol", rtol)
+    options.atol = _real("atol", atol)
     if atol_per_state is not None:
-        options.atol_per_state = [float(a) for a in np.ravel(atol_per_state)]
+        options.atol_per_state = _reals("atol_per_state", atol_per_state)
     if output_times is not None:
-        options.output_times = [float(x) for x in np.ravel(output_times)]
-    options.record_steps = bool(record_steps)
-    options.max_steps = _integer("max_steps", max_steps)
-    options.max_step = float(max_step)
-    options.initial_step = float(initial_step)
-    options.max_events_in_window = _integer("max_events_in_window", max_events_in_window)
-    options.event_window = float(event_window)
+        options.output_times = _reals("output_times", output_times)
+    options.record_steps = _flag("record_steps", record_steps)
+    options.max_steps = _integer("max_steps", max_steps, 1, 2**62)
+    options.max_step = _real("max_step", max_step)
+    options.initial_step = _real("initial_step", initial_step)
+    options.max_events_in_window = _integer("max_events_in_window", max_events_in_window, 1, 1_000_000)
+    options.event_window = _real("event_window", event_window)
+    if timeout is not None:
+        options.timeout = _real("timeout", timeout)
+    if max_output_rows is not None:
+        options.max_output_rows = _integer("max_output_rows", max_output_rows, 1, 2**62)
     try:
-        raw = rig._simulate(float(t_end), options, float(t_start))
+        raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))
     except SimulationError as error:
         error._period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
         raise
-    return Result(raw, period=rig.period)
+    result = Result(raw, period=rig.period)
+    for message in result.warnings:
+        warnings.warn(message, AccuracyWarning, stacklevel=2)
+    return result
 
 
-def _integer(name: str, value) -> int:
-    if isinstance(value, bool) or not float(value).is_integer():
-        raise ValueError(f"{name} must be a whole number (got {value!r})")
-    if not -2**62 < float(value) < 2**62:
-        raise ValueError(f"{name} must be a whole number of reasonable size (got {value!r})")
+def _real(name: str, value) -> float:
+    """A real number (int, float, NumPy scalar); strings, bools and None are refused, not converted."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise InvalidParameterError(f"{name} must be a real number (got {type(value).__name__} {value!r:.60})",
+                                    name)
+    return float(value)
+
+
+def _reals(name: str, values) -> List[float]:
+    if isinstance(values, (str, bytes)):
+        raise InvalidParameterError(f"{name} must be a sequence of real numbers (got {type(values).__name__})", name)
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError) as error:
+        raise InvalidParameterError(f"{name} must be a sequence of real numbers ({error})", name) from None
+    if array.dtype.kind not in "iuf" or array.ndim > 1:
+        raise InvalidParameterError(f"{name} must be a one-dimensional sequence of real numbers "
+                                    f"(got dtype {array.dtype}, {array.ndim} dimensions)", name)
+    return [float(x) for x in np.ravel(array)]
+
+
+def _flag(name: str, value) -> bool:
+    """True or False only: "yes", 1 or "false" are refused rather than guessed at."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise InvalidParameterError(f"{name} must be True or False (got {type(value).__name__} {value!r:.60})", name)
+    return bool(value)
+
+
+def _integer(name: str, value, low: int, high: int) -> int:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.integer, np.floating)):
+        raise InvalidParameterError(f"{name} must be a whole number (got {type(value).__name__} {value!r:.60})", name)
+    if not (math.isfinite(value) and float(value).is_integer()):
+        raise InvalidParameterError(f"{name} must be a whole number (got {value!r})", name)
+    if not low <= int(value) <= high:
+        raise InvalidParameterError(f"{name} must be in [{low}, {high}] (got {int(value)})", name)
     return int(value)

@@ -69,14 +69,14 @@ public:
     }
 
     StepResult step(double t_stop) {
+        if (t_stop - t_ <= underflow_step()) return cross_tiny_span(t_stop);
         if (h_ == 0.0) h_ = opt_.initial_step > 0.0 ? opt_.initial_step : initial_step(t_stop);
         for (;;) {
             if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
             double h = std::min({h_, opt_.max_step, t_stop - t_});
             const bool last = t_ + h >= t_stop || (t_stop - (t_ + h)) <= 1e-12 * std::abs(t_stop);
             if (last) h = t_stop - t_;
-            if (h <= 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_)))
-                fail("step size underflow (stiff, discontinuous or non-finite right-hand side)");
+            if (h <= underflow_step()) fail("step size underflow (stiff, discontinuous or non-finite right-hand side)");
             ++stats_.steps;
             const double err = attempt(h);
             if (err <= 1.0) {
@@ -153,6 +153,29 @@ private:
     }
     double scale(std::size_t i, double a, double b) const {
         return opt_.absolute_tolerance(i) + opt_.rtol * std::max(std::abs(a), std::abs(b));
+    }
+
+    /// Steps this short carry no information at t_ (a few ulps): the error control cannot work there.
+    double underflow_step() const { return 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_)); }
+
+    /// What is left to t_stop is a few ulps (a run of t_end = 1e-300, a switch located just before t_end): one
+    /// Euler step, linear dense output, no guard scan (no crossing can be resolved inside it).
+    StepResult cross_tiny_span(double t_stop) {
+        const double h = t_stop - t_;
+        for (std::size_t i = 0; i < N; ++i) {
+            y1_[i] = y_[i] + h * k1_[i];
+            rc1_[i] = y_[i];
+            rc2_[i] = y1_[i] - y_[i];
+            rc3_[i] = rc4_[i] = rc5_[i] = 0.0;
+        }
+        ++stats_.steps;
+        h_dense_ = h > 0.0 ? h : 1.0;
+        t_prev_ = t_;
+        t_ = t_stop;
+        y_ = y1_;
+        rhs(t_, y_, k1_);
+        guards(t_, y_, g_);
+        return {t_, false};
     }
 
     [[noreturn]] void fail(const char* why) const {

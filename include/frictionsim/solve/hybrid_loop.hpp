@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -90,12 +91,56 @@ bool zero_guards_triggering(const System& sys, double t, const double* x, int mo
     return any;
 }
 
+/// The run's wall-clock watch: between steps it polls SolverOptions::interrupt and checks the timeout, at most
+/// every kPollInterval (the clock is read every kStepsPerClockRead steps, a few ns each). Inactive, and free,
+/// when there is neither an interrupt callback nor a finite timeout.
+class RunWatch {
+public:
+    using Clock = std::chrono::steady_clock;
+    static constexpr std::chrono::milliseconds kPollInterval{20};
+    static constexpr unsigned kStepsPerClockRead = 16;
+
+    explicit RunWatch(const SolverOptions& o)
+        : options_(o), active_(static_cast<bool>(o.interrupt) || std::isfinite(o.timeout)), start_(Clock::now()),
+          next_poll_(start_ + kPollInterval) {}
+
+    /// After a step that reached t: throws Interrupted or BudgetExceeded("timeout") when it is time to stop.
+    void after_step(double t) {
+        if (!active_ || ++steps_ % kStepsPerClockRead != 0) return;
+        const Clock::time_point now = Clock::now();
+        if (now < next_poll_) return;
+        next_poll_ = now + kPollInterval;
+        if (options_.interrupt && options_.interrupt()) {
+            std::ostringstream msg;
+            msg.precision(17);
+            msg << "interrupted at t = " << t << " s";
+            throw Interrupted(msg.str(), t);
+        }
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        if (elapsed > options_.timeout) {
+            std::ostringstream msg;
+            msg.precision(17);
+            msg << "wall-clock budget exceeded: timeout = " << options_.timeout << " s spent, stopped at t = " << t
+                << " s; raise SolverOptions::timeout (Python: simulate(timeout=...))";
+            throw BudgetExceeded(msg.str(), t, "timeout");
+        }
+    }
+
+private:
+    const SolverOptions& options_;
+    bool active_;
+    Clock::time_point start_, next_poll_;
+    unsigned steps_ = 0;
+};
+
 /// Runs f; an exception from the model (a sampled signal run out, a law's own check) becomes a
 /// SimulationError that says where the run stopped, so the caller keeps the results up to there.
 template <class F>
 auto reporting_time(double t, F&& f) -> decltype(f()) {
     try {
         return f();
+    } catch (const Interrupted& e) {
+        throw Interrupted(e.what(), t);  // raised inside the model (a Python callable's KeyboardInterrupt): stop here
     } catch (const SimulationError&) {
         throw;
     } catch (const std::exception& e) {
@@ -138,6 +183,7 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
     Integrator<System> integrator(sys, options);
     int mode = detail::reporting_time(t0, [&] { return sys.initial_mode(t0, x.data()); });
     detail::ChatteringGuard chattering(options);
+    detail::RunWatch watch(options);
     std::array<int, G> fired{};
     std::array<double, System::state_size> buffer{};
 
@@ -177,18 +223,21 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
 
     while (integrator.time() < t_end) {
         const StepResult s = detail::reporting_time(integrator.time(), [&] { return integrator.step(t_end); });
-        while (next_output < outputs.size() && outputs[next_output] <= s.t) {
-            integrator.interpolate(outputs[next_output], buffer.data());
-            observer.output(outputs[next_output], buffer.data(), mode);
-            ++next_output;
-        }
-        if (options.record_steps) observer.step(s.t, integrator.state(), mode);
+        detail::reporting_time(s.t, [&] {  // the observer evaluates the model too (friction force)
+            while (next_output < outputs.size() && outputs[next_output] <= s.t) {
+                integrator.interpolate(outputs[next_output], buffer.data());
+                observer.output(outputs[next_output], buffer.data(), mode);
+                ++next_output;
+            }
+            if (options.record_steps) observer.step(s.t, integrator.state(), mode);
+        });
         if (s.root) {
             const double* xs = integrator.state();
             std::copy(xs, xs + System::state_size, x.begin());
             std::copy(integrator.roots(), integrator.roots() + G, fired.begin());
             detail::reporting_time(s.t, [&] { handle_switch(s.t); });
         }
+        watch.after_step(s.t);  // after the step's outputs: a stop here keeps everything up to s.t
     }
     HybridOutcome<System::state_size> out;
     std::copy(integrator.state(), integrator.state() + System::state_size, out.state.begin());

@@ -1,10 +1,16 @@
-// Observer that stores output rows (time, states, friction force, mode) and the event log into a Result.
+// Observer that stores output rows (time, states, friction force, mode) and the event log into a Result. It is the
+// last check before a result is returned: a non-finite value stops the run (NaN is never success), and the rows
+// and events it keeps are capped (SolverOptions::max_output_rows), so a failing run cannot fill the memory.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <memory>
+#include <sstream>
 #include <string>
 
+#include "../error.hpp"
+#include "options.hpp"
 #include "result.hpp"
 
 namespace frictionsim {
@@ -12,8 +18,9 @@ namespace frictionsim {
 template <class System>
 class Recorder {
 public:
-    explicit Recorder(const System& system, std::size_t expected_rows = 0)
-        : sys_(system), result_(std::make_shared<Result>()) {
+    explicit Recorder(const System& system, std::size_t expected_rows = 0,
+                      std::size_t max_rows = SolverOptions{}.max_output_rows)
+        : sys_(system), max_rows_(max_rows), result_(std::make_shared<Result>()) {
         for (const char* n : system.state_names()) result_->state_names.emplace_back(n);
         result_->t.reserve(expected_rows);
         result_->states.reserve(expected_rows * System::state_size);
@@ -22,13 +29,21 @@ public:
     }
 
     void output(double t, const double* x, int mode) {
+        if (result_->t.size() >= max_rows_) over_budget(t, "rows");
+        const double force = sys_.friction_force(t, x, mode);
+        bool finite = std::isfinite(force);
+        for (std::size_t i = 0; i < System::state_size; ++i) finite = finite && std::isfinite(x[i]);
+        if (!finite) non_finite(t, x, force);
         result_->t.push_back(t);
         result_->states.insert(result_->states.end(), x, x + System::state_size);
-        result_->friction_force.push_back(sys_.friction_force(t, x, mode));
+        result_->friction_force.push_back(force);
         result_->mode.push_back(mode);
     }
     void step(double t, const double* x, int mode) { output(t, x, mode); }
-    void event(const Event& e, double, const double*) { result_->events.push_back(e); }
+    void event(const Event& e, double t, const double*) {
+        if (result_->events.size() >= max_rows_) over_budget(t, "events");
+        result_->events.push_back(e);
+    }
 
     /// Marks how the run ended and hands the result over (shared, so an exception can carry it too).
     std::shared_ptr<Result> finish(bool completed, double t_reached, const SolverStats& stats = {}) {
@@ -40,7 +55,31 @@ public:
     }
 
 private:
+    /// Bytes one output row takes: time, states, friction force, mode.
+    static constexpr std::size_t kRowBytes = (System::state_size + 2) * sizeof(double) + sizeof(int);
+
+    [[noreturn]] void over_budget(double t, const char* what) const {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "the result reached max_output_rows = " << max_rows_ << " " << what << " (about "
+            << static_cast<double>(max_rows_ * kRowBytes) / (1 << 20) << " MiB of rows) at t = " << t
+            << " s; record fewer rows (output_times instead of every step) or raise max_output_rows";
+        throw BudgetExceeded(msg.str(), result_->t.empty() ? t : result_->t.back(), "max_output_rows");
+    }
+
+    [[noreturn]] void non_finite(double t, const double* x, double force) const {
+        std::ostringstream msg;
+        msg.precision(17);
+        msg << "non-finite result at t = " << t << " s:";
+        const auto names = sys_.state_names();
+        for (std::size_t i = 0; i < System::state_size; ++i)
+            if (!std::isfinite(x[i])) msg << " " << names[i] << " = " << x[i];
+        if (!std::isfinite(force)) msg << " friction_force = " << force;
+        throw SimulationError(msg.str(), result_->t.empty() ? t : result_->t.back());
+    }
+
     const System& sys_;
+    std::size_t max_rows_;
     std::shared_ptr<Result> result_;
 };
 

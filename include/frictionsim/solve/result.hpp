@@ -39,6 +39,7 @@ struct Result {
     std::vector<Event> events;
     SolverStats stats;
     bool completed = false;              ///< false when the run stopped early (see SimulationError)
+    std::vector<std::string> warnings;   ///< why a completed result may be unreliable (e.g. a loose rtol)
     double t_reached = 0.0;
 
     std::size_t state_count() const { return state_names.size(); }

@@ -3,7 +3,10 @@
 // carrying the result up to the time reached.
 #pragma once
 
+#include <algorithm>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <utility>
 
 #include "../error.hpp"
@@ -11,6 +14,14 @@
 #include "recorder.hpp"
 
 namespace frictionsim {
+
+inline std::string loose_tolerance_warning(double rtol) {
+    std::ostringstream msg;
+    msg << "rtol = " << rtol << " is looser than " << SolverOptions::reliable_rtol
+        << ": the error estimate is not reliable there (cycle means of a stick-slip rig can be off by a factor); "
+           "check the result at a tighter rtol";
+    return msg.str();
+}
 
 template <template <class> class Integrator, class System>
 Result simulate_with(const System& system, double t_end, const SolverOptions& options, double t_start = 0.0) {
@@ -21,10 +32,13 @@ Result simulate_with(const System& system, double t_end, const SolverOptions& op
         every_step.record_steps = true;
         opts = &every_step;
     }
-    Recorder<System> recorder(system, options.output_times.size());
+    Recorder<System> recorder(system, std::min(options.output_times.size(), options.max_output_rows),
+                              options.max_output_rows);
     try {
         auto outcome = integrate_hybrid<Integrator>(system, system.initial_state(), t_start, t_end, *opts, recorder);
-        return std::move(*recorder.finish(true, t_end, outcome.stats));
+        Result result = std::move(*recorder.finish(true, t_end, outcome.stats));
+        if (options.rtol > SolverOptions::reliable_rtol) result.warnings.push_back(loose_tolerance_warning(options.rtol));
+        return result;
     } catch (SimulationError& e) {
         e.attach_partial(recorder.finish(false, e.time_reached()));
         throw;
