@@ -158,6 +158,10 @@ struct KinematicRigPy {
               },
               law)) {
         if (n.kind() == Signal::Kind::constant) detail::require_positive("KinematicRig", "normal_force", n(0.0));
+        if (n.kind() == Signal::Kind::sampled) {  // every sample: a spike between two steps would go unseen
+            const auto values = normal_force.to_python().cast<py::tuple>()[1].cast<std::vector<double>>();
+            for (double v : values) detail::require_positive("KinematicRig", "normal_force", v);
+        }
     }
 
     /// Sampled signals must cover the run: say so up front rather than stop at the edge of the data.
@@ -189,6 +193,8 @@ KinematicRigPy make_rig(py::handle friction, py::handle relative_velocity, py::h
 KinematicRigPy make_harmonic(py::handle friction, double v_d, double v_a, double frequency, py::handle normal_force,
                              std::optional<std::vector<double>> initial_state) {
     detail::require_positive("KinematicRig", "frequency", frequency);
+    if (!std::isfinite(2.0 * pi * frequency))
+        detail::reject("KinematicRig", "frequency", "small enough that 2 pi f is finite", frequency);
     return KinematicRigPy(friction_law_from_python(friction, "friction"), Signal::harmonic(v_d, v_a, 2.0 * pi * frequency),
                           Signal::from_python(normal_force, "normal_force"), std::move(initial_state), frequency);
 }

@@ -209,7 +209,8 @@ mu : float
 tangential_stiffness : float
     Tangential contact stiffness k_t [N/m], > 0 (paper 000 fits 30-40 N/mm for shale on 45 steel, Fig. 10).
 exponent : float
-    alpha [-], >= 0 (1 in the paper).
+    alpha [-], in [0.5, 50] (1 in the paper). Below 0.5 the saturation is reached with an unbounded slope that no
+    step-size control resolves in reasonable time.
 )doc")
         .def(py::init([](double mu, double k_t, double alpha) {
                  return constructing([&] { return Dahl(mu, k_t, alpha); });

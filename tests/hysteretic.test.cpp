@@ -276,8 +276,18 @@ TEST_CASE("hysteretic law rejects bad parameters, naming them", "[hysteretic][va
     P p11 = ok;
     p11.accelerating.c11 = kNaN;
     CHECK(rejected_parameter([&] { build(p11); }) == "p11");
-    // negative or zero coefficients are legitimate (a Stribeck-like decrease, a negative added inertia)
+    // negative or zero coefficients are legitimate (a Stribeck-like decrease, a negative added inertia)...
     P signs = ok;
-    signs.accelerating = {0.0, -1.0, -0.01, -1.0, -1.0, -1.0};
+    signs.accelerating = {1.0, -1.0, -0.01, -1.0, -1.0, -1.0};
+    signs.decelerating = {0.5, 0.0, 0.0, -1.0, 0.0, 0.0};
     CHECK(rejected_parameter([&] { build(signs); }) == "<nothing thrown>");
+    // ...but not a level p00 + p10 w_s + p20 w_s^2 <= 0 where slip begins: that friction drives the disc
+    for (bool accelerating : {true, false}) {
+        P p = ok;
+        BranchPolynomial& branch = accelerating ? p.accelerating : p.decelerating;
+        branch = {-1e-6, -1.0, 0.5, 0.0, 0.0, 0.0};  // the level alone decides, not the acceleration terms
+        CHECK(rejected_parameter([&] { build(p); }) == (accelerating ? "accelerating" : "decelerating"));
+        branch = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        CHECK(rejected_parameter([&] { build(p); }) == (accelerating ? "accelerating" : "decelerating"));
+    }
 }

@@ -29,6 +29,7 @@
 #endif
 
 #include "catch.hpp"
+#include "rejection.hpp"
 
 using namespace frictionsim;
 
@@ -130,24 +131,27 @@ TEST_CASE("Stribeck rejects every non-physical parameter, naming it", "[validati
     CHECK_NOTHROW(Stribeck(edge));
 }
 
-TEST_CASE("Dahl rejects non-physical parameters, naming them; exponent 0 is valid", "[validation][dahl]") {
+TEST_CASE("Dahl rejects non-physical parameters, naming them; exponent in [0.5, 50]", "[validation][dahl]") {
+    std::vector<double> bad_exponent = negative_or_nonfinite;
+    for (double v : {0.0, 0.1, 0.3, 0.4999, 50.001, 1e3}) bad_exponent.push_back(v);
     check_rules({
         {"friction_coefficient", not_positive, [](double v) { (void)Dahl(v, 3e4); }},
         {"tangential_stiffness", not_positive, [](double v) { (void)Dahl(0.3, v); }},
-        {"exponent", negative_or_nonfinite, [](double v) { (void)Dahl(0.3, 3e4, v); }},
+        {"exponent", bad_exponent, [](double v) { (void)Dahl(0.3, 3e4, v); }},
     });
-    CHECK_NOTHROW(Dahl(0.3, 3e4, 0.0));
+    CHECK(rejection_message([] { (void)Dahl(0.3, 3e4, 0.2); }).find("in [0.5, 50]") != std::string::npos);
     CHECK_NOTHROW(Dahl(0.3, 3e4, 0.5));
+    CHECK_NOTHROW(Dahl(0.3, 3e4, 50.0));
 
-    // exponent 0 also runs: dz/dt = v_r sgn(b), a ramp F = k_t v_r t towards the limit mu N = 3 N (reached at
-    // t = 0.1 s; this run stops before it, where sgn(b) makes the right-hand side discontinuous)
+    // the lowest exponent runs in reasonable time: the ramp towards the limit mu N = 3 N, dz/dt = v_r sqrt(b),
+    // b = 1 - F / (mu N), has F = mu N (1 - (1 - k_t v_r t / (2 mu N))^2) until saturation
     SolverOptions o;
-    o.output_times = {0.0, 0.05};
-    const Result r = simulate(KinematicRig<Dahl, ConstantSignal>(Dahl(0.3, 3e4, 0.0), ConstantSignal(1e-3),
+    o.output_times = {0.0, 0.1};
+    const Result r = simulate(KinematicRig<Dahl, ConstantSignal>(Dahl(0.3, 3e4, 0.5), ConstantSignal(1e-3),
                                                                  ConstantSignal(10.0)),
-                              0.05, o);
+                              0.1, o);
     CHECK(r.completed);
-    CHECK(r.friction_force.back() == Approx(3e4 * 1e-3 * 0.05).epsilon(1e-8));
+    CHECK(r.friction_force.back() == Approx(3.0 * (1.0 - std::pow(1.0 - 3e4 * 1e-3 * 0.1 / 6.0, 2))).epsilon(1e-6));
 }
 
 namespace {

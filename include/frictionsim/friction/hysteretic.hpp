@@ -15,6 +15,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <sstream>
+#include <stdexcept>
 
 #include "../detail/validate.hpp"
 
@@ -81,6 +83,32 @@ public:
         };
         check(p.accelerating, p_names);
         check(p.decelerating, n_names);
+        // Friction opposes the motion: where slip begins each branch's level must be a positive torque (a
+        // negative one drives the disc, and the rig's friction then does negative work).
+        for (const bool accelerating : {true, false}) {
+            const double level = (accelerating ? p.accelerating : p.decelerating).level(p.stick_speed);
+            if (!(level > 0.0))
+                detail::reject(name, accelerating ? "accelerating" : "decelerating",
+                               accelerating ? "a branch whose level p00 + p10 w_s + p20 w_s^2 at the stick speed is "
+                                              "positive (friction opposes the motion)"
+                                            : "a branch whose level n00 + n10 w_s + n20 w_s^2 at the stick speed is "
+                                              "positive (friction opposes the motion)",
+                               level);
+        }
+    }
+
+    /// Throws std::domain_error where a branch's level is not a positive torque at |w| = u: a fitted quadratic
+    /// taken past its range, where friction would drive the disc.
+    void require_opposing(bool accelerating, double u) const {
+        const double level = branch(accelerating).level(u);
+        if (level > 0.0) return;
+        std::ostringstream msg;
+        msg.precision(10);
+        msg << "hysteretic friction (eq 6): the " << (accelerating ? "accelerating level P0" : "decelerating level N0")
+            << "(|w|) = " << level << " N m at |w| = " << u
+            << " rad/s is not positive, so friction would drive the disc; the polynomial is used outside the speed "
+               "range it was fitted over";
+        throw std::domain_error(msg.str());
     }
 
     const Params& params() const { return p_; }

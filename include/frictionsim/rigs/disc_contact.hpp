@@ -141,6 +141,7 @@ public:
         }
         const double s = side(mode);
         if (is_hold(mode)) return {0.0, shaft_torque};
+        law_.require_opposing(is_accelerating(mode), s * w);
         const double b = equation(mode, w, shaft_torque, inertia).root();
         return {s * b, shaft_torque - inertia * s * b};
     }

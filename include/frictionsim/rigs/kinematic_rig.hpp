@@ -1,15 +1,25 @@
 // A kinematic rig: a friction law driven by a prescribed relative velocity v_r(t) and normal force N(t), as
-// identification from measured signals needs. There is no mass, so nothing can hold the contact in stick:
-// set-valued laws give their slip force on the branch sgn(v_r), and zero crossings of v_r are located as
-// events (the force jumps there). A Karnopp band needs the force that would stick, which a kinematic rig
-// does not have: such laws are rejected. States: the law's states, friction impulse int F dt and friction
-// work int F v_r dt (energy dissipated plus what the law stores).
+// identification from measured signals needs. There is no mass: set-valued laws give their slip force on the
+// branch sgn(v_r), and zero crossings of v_r are located as events (the force jumps there). A Karnopp band
+// needs the force that would stick, which a kinematic rig does not have: such laws are rejected. States: the
+// law's states, friction impulse int F dt and friction work int F v_r dt (energy dissipated plus what the law
+// stores).
+//
+// Rest: where the prescribed v_r stays at exactly zero (a standstill in measured data) the contact sticks. It
+// holds the force it carried on arriving, the rate-independent (Coulomb) limit of a bristle law: a set-valued
+// law keeps its slip force at v_r = 0 on the branch it arrived on (+mu N after sliding forwards), a state law
+// the force its state gives (dz/dt = 0 at v_r = 0). Modes: +-1 slip (the branch sgn v_r), +-2 stick holding
+// branch +-1's force, 0 stick from the start of the run (a set-valued law then holds no force). In stick the
+// guard fires when |v_r| exceeds the smallest normal double, so no guard sits at zero through a standstill: one
+// that did would fire again at every step of it (chattering).
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <stdexcept>
 #include <utility>
 
 #include "../detail/validate.hpp"
@@ -29,6 +39,8 @@ public:
     static constexpr bool stiff = declares_stiff<Law>::value;  ///< picks the integrator under Method::automatic
     static constexpr std::size_t guard_count = branches ? 1 : 0;
     static constexpr std::size_t law_state = 0, friction_impulse = Z, friction_work = Z + 1;
+    /// Mode of a standstill that holds slip branch s's force (s = +-1); 0 is a standstill from the run's start.
+    static constexpr int rest_holding(int s) { return 2 * s; }
 
     KinematicRig(Law law, RelativeVelocity relative_velocity, NormalForce normal_force,
                  std::array<double, Z> initial_law_state = {})
@@ -56,10 +68,10 @@ public:
     void rhs_guards(double t, const double* x, int mode, double* dxdt, double* g) const {
         const double v = v_r_(t), n = normal_force(t);
         if constexpr (branches) {
-            if (g != nullptr) g[0] = mode * v;
+            if (g != nullptr) g[0] = guard(v, mode);
         }
         const double f = force(v, n, x, mode);
-        if constexpr (Z > 0) law_.state_derivative(v, n, x + law_state, mode, dxdt + law_state);
+        if constexpr (Z > 0) law_.state_derivative(v, n, x + law_state, branch_of(mode), dxdt + law_state);
         dxdt[friction_impulse] = f;
         dxdt[friction_work] = f * v;
     }
@@ -69,7 +81,7 @@ public:
         if constexpr (Z > 0) {
             constexpr std::size_t n = state_size;
             const double v = v_r_(t);
-            const StatePartials<Z> d = law_.partials(v, normal_force(t), x + law_state, mode);
+            const StatePartials<Z> d = law_.partials(v, normal_force(t), x + law_state, branch_of(mode));
             for (std::size_t j = 0; j < Z; ++j) {
                 J[(law_state + j) * n + friction_impulse] = d.force_state[j];
                 J[(law_state + j) * n + friction_work] = v * d.force_state[j];
@@ -81,21 +93,27 @@ public:
     }
 
     void guards(double t, const double* /*x*/, int mode, double* g) const {
-        if constexpr (branches) g[0] = mode * v_r_(t);
+        if constexpr (branches) g[0] = guard(v_r_(t), mode);
     }
     int guard_direction(std::size_t, int) const { return -1; }
     const char* guard_name(std::size_t, int) const { return "relative_velocity"; }
-    const char* mode_name(int mode) const { return branches ? contact_mode_name(mode) : "smooth"; }
+    const char* mode_name(int mode) const {
+        if constexpr (!branches) return "smooth";
+        return is_slip(mode) ? contact_mode_name(mode) : "stick";
+    }
 
     int initial_mode(double t, const double* /*x*/) const {
         if constexpr (!branches) return 0;
         const double v = v_r_(t);
-        if (v != 0.0) return sign_of(v);
-        const double dt = 1e-9 * std::max(1.0, std::abs(t));  // starting at rest: the side v_r heads to
-        const int s = sign_of(v_r_(t + dt));
-        return s != 0 ? s : int{slip_positive};
+        return v != 0.0 ? sign_of(v) : heading(t, 0);  // starting at rest: the side v_r heads to, or stick
     }
-    int switch_mode(double, double*, int mode, const int*) const { return -mode; }
+
+    /// At a zero of v_r in slip s: where v_r heads next decides, reversal (-s), standstill (stick holding s) or
+    /// a touch (s again). Leaving stick, |v_r| > 0 at the root: its sign.
+    int switch_mode(double t, double*, int mode, const int*) const {
+        if (!is_slip(mode)) return sign_of(v_r_(t));
+        return heading(t, rest_holding(mode));
+    }
 
     std::array<double, state_size> initial_state() const {
         std::array<double, state_size> x{};
@@ -118,12 +136,35 @@ private:
             detail::reject("KinematicRig", "normal_force", "positive and finite at every time", n);
         return n;
     }
+    static bool is_slip(int mode) { return mode == slip_positive || mode == slip_negative; }
+    /// The law's branch in `mode`: the slip direction, the one a stick holds, +1 for a stick from the start (where
+    /// v_r = 0 the branch of a state law changes nothing).
+    static int branch_of(int mode) { return mode > 0 ? 1 : mode < 0 ? -1 : 1; }
+
+    /// Slip s: s v_r, falling through zero at a reversal or standstill. Stick: DBL_MIN - |v_r|, falling as
+    /// soon as v_r leaves zero and never zero while it stays there.
+    static double guard(double v, int mode) {
+        return is_slip(mode) ? mode * v : std::numeric_limits<double>::min() - std::abs(v);
+    }
+
+    /// The mode v_r heads into just after t (the signal is known ahead): its sign, or `at_rest` if it stays 0.
+    int heading(double t, int at_rest) const {
+        const double dt = 1e-9 * std::max(1.0, std::abs(t));
+        try {
+            const int s = sign_of(v_r_(t + dt));
+            return s != 0 ? s : at_rest;
+        } catch (const std::out_of_range&) {  // sampled data ending within dt: nothing follows to head into
+            return at_rest;
+        }
+    }
+
     double force(double v, double n, const double* x, int mode) const {
         if constexpr (Law::has_stick) {
             (void)x;
-            return law_.slip_force(v, n, mode != 0 ? mode : sign_of(v));
+            if (mode == stick) return 0.0;  // at rest from the start: no force held
+            return law_.slip_force(v, n, branch_of(mode));
         } else {
-            return law_.force(v, n, x + law_state, mode);
+            return law_.force(v, n, x + law_state, branch_of(mode));
         }
     }
 

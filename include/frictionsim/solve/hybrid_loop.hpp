@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <exception>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -119,8 +120,8 @@ public:
         const double elapsed = std::chrono::duration<double>(now - start_).count();
         if (elapsed > options_.timeout) {
             std::ostringstream msg;
-            msg.precision(17);
-            msg << "wall-clock budget exceeded: timeout = " << options_.timeout << " s spent, stopped at t = " << t
+            msg << "wall-clock budget exceeded: timeout = " << std::setprecision(6) << options_.timeout
+                << " s spent, stopped at t = " << std::setprecision(17) << t
                 << " s; raise SolverOptions::timeout (Python: simulate(timeout=...))";
             throw BudgetExceeded(msg.str(), t, "timeout");
         }
@@ -241,6 +242,9 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
     }
     HybridOutcome<System::state_size> out;
     std::copy(integrator.state(), integrator.state() + System::state_size, out.state.begin());
+    for (double xi : out.state)  // NaN is never success, recorded or not
+        if (!std::isfinite(xi)) throw SimulationError("non-finite final state at t = " + std::to_string(t_end) + " s",
+                                                      integrator.previous_time());
     out.mode = mode;
     out.stats = integrator.stats();
     return out;
