@@ -10,7 +10,8 @@ __all__: list[str] = ['AxialVibrationRig', 'Coulomb', 'Dahl', 'ElastoPlastic', '
 
 class Coulomb:
 
-    def __getstate__(self) -> tuple[float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, mu: float, mu_static: float | None=None) -> None:
@@ -19,8 +20,6 @@ class Coulomb:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     @property
     def mu(self) -> float:
@@ -32,7 +31,8 @@ class Coulomb:
 
 class Stribeck:
 
-    def __getstate__(self) -> tuple[float, float, float, float, float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, mu: float, mu_static: float, stribeck_velocity: float, shape_exponent: float=2.0, viscous_coefficient: float=0.0, karnopp_band: float=0.0) -> None:
@@ -41,8 +41,6 @@ class Stribeck:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def slip_force(self, v_r: float, normal_force: float, direction: int) -> float:
         ...
@@ -73,7 +71,8 @@ class Stribeck:
 
 class Dahl:
 
-    def __getstate__(self) -> tuple[float, float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, mu: float, tangential_stiffness: float, exponent: float=1.0) -> None:
@@ -82,8 +81,6 @@ class Dahl:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     @property
     def exponent(self) -> float:
@@ -99,7 +96,8 @@ class Dahl:
 
 class LuGre:
 
-    def __getstate__(self) -> tuple[float, float, float, float, float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, mu: float, mu_static: float, stribeck_velocity: float, bristle_stiffness: float, bristle_damping: float, viscous_damping: float=0.0) -> None:
@@ -108,8 +106,6 @@ class LuGre:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def stribeck_level(self, v_r: float, normal_force: float) -> float:
         ...
@@ -140,7 +136,8 @@ class LuGre:
 
 class ElastoPlastic:
 
-    def __getstate__(self) -> tuple[float, float, float, float, float, float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, mu: float, mu_static: float, stribeck_velocity: float, bristle_stiffness: float, bristle_damping: float, viscous_damping: float=0.0, breakaway_fraction: float=0.5) -> None:
@@ -149,8 +146,6 @@ class ElastoPlastic:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def breakaway_deflection(self, normal_force: float) -> float:
         ...
@@ -204,7 +199,8 @@ class PowerLawCoefficient:
     def from_table5(lubricant: str) -> PowerLawCoefficient:
         ...
 
-    def __getstate__(self) -> tuple[float, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, eta: float, exponent: float) -> None:
@@ -213,8 +209,6 @@ class PowerLawCoefficient:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def coefficient(self, vibration_velocity_amplitude: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], sliding_velocity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         ...
@@ -245,7 +239,8 @@ class Method:
     def __eq__(self, other: typing.Any) -> bool:
         ...
 
-    def __getstate__(self) -> int:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __hash__(self) -> int:
@@ -314,6 +309,26 @@ class SolverOptions:
 
     @event_window.setter
     def event_window(self, arg0: float) -> None:
+        ...
+
+    max_rtol: typing.ClassVar[float]
+    reliable_rtol: typing.ClassVar[float]
+    min_atol: typing.ClassVar[float]
+
+    @property
+    def timeout(self) -> float:
+        ...
+
+    @timeout.setter
+    def timeout(self, arg0: float) -> None:
+        ...
+
+    @property
+    def max_output_rows(self) -> int:
+        ...
+
+    @max_output_rows.setter
+    def max_output_rows(self, arg0: int) -> None:
         ...
 
     @property
@@ -435,6 +450,10 @@ class RawResult:
     def t_reached(self) -> float:
         ...
 
+    @property
+    def warnings(self) -> list[str]:
+        ...
+
     def take_event_log(self) -> EventLog:
         ...
 
@@ -449,7 +468,8 @@ class EventLog:
 
 class AxialVibrationRig:
 
-    def __getstate__(self) -> tuple[typing.Any, float, float, float, float, float, float, bool, float, float | None, float]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, friction: typing.Any, *, mass: float=0.2, drive_stiffness: float=20000.0, sliding_velocity: float=0.001, amplitude: float=0.005, frequency: float=17.0, normal_force: float=90.0, gravity: bool=False, gravitational_acceleration: float=9.81, initial_position: float | None=None, initial_velocity: float=0.0) -> None:
@@ -458,8 +478,6 @@ class AxialVibrationRig:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def _simulate(self, arg0: float, arg1: SolverOptions, arg2: float) -> RawResult:
         ...
@@ -532,7 +550,8 @@ class KinematicRig:
     def harmonic(friction: typing.Any, *, sliding_velocity: float, velocity_amplitude: float, frequency: float, normal_force: typing.Any, initial_state: collections.abc.Sequence[float] | None=None) -> KinematicRig:
         ...
 
-    def __getstate__(self) -> tuple[typing.Any, bool, typing.Any, typing.Any, list[float] | None]:
+    def __reduce__(self) -> tuple:
+        """Unpickling calls the constructor through _rebuild (the same checks and errors)."""
         ...
 
     def __init__(self, friction: typing.Any, *, relative_velocity: typing.Any, normal_force: typing.Any, initial_state: collections.abc.Sequence[float] | None=None) -> None:
@@ -541,8 +560,6 @@ class KinematicRig:
     def __repr__(self) -> str:
         ...
 
-    def __setstate__(self, arg0: tuple) -> None:
-        ...
 
     def _simulate(self, arg0: float, arg1: SolverOptions, arg2: float) -> RawResult:
         ...
@@ -628,6 +645,9 @@ class HydraulicOscillatorParams:
     def wellbore_radius(self) -> float:
         ...
 
+def _rebuild(cls: type, args: tuple, kwargs: dict, factory: str) -> typing.Any:
+    ...
+
 def equivalent_rig_normal_force(params: HydraulicOscillatorParams) -> float:
     ...
 
@@ -666,10 +686,9 @@ def whole_cycle_window(t_first: float, t_last: float, period: float, transient: 
 
 class HystereticFriction:
 
-    def __getstate__(self) -> tuple: ...
+    def __reduce__(self) -> tuple: ...
     def __init__(self, stick_slope: float, accelerating: collections.abc.Sequence[float], decelerating: collections.abc.Sequence[float], stick_speed: float=0.001, reference_normal_force: float=35.0, branch_gap: str='hold') -> None: ...
     def __repr__(self) -> str: ...
-    def __setstate__(self, arg0: tuple) -> None: ...
     def torque(self, w: numpy.typing.ArrayLike, al: numpy.typing.ArrayLike, normal_force: numpy.typing.ArrayLike | None=None) -> typing.Any: ...
     def branch_torque(self, accelerating: numpy.typing.ArrayLike, w: numpy.typing.ArrayLike, al: numpy.typing.ArrayLike, normal_force: numpy.typing.ArrayLike | None=None) -> typing.Any: ...
     @property
@@ -687,10 +706,9 @@ class HystereticFriction:
 
 class TorsionalRig:
 
-    def __getstate__(self) -> tuple: ...
+    def __reduce__(self) -> tuple: ...
     def __init__(self, friction: typing.Any, **kwargs: float) -> None: ...
     def __repr__(self) -> str: ...
-    def __setstate__(self, arg0: tuple) -> None: ...
     def _simulate(self, arg0: float, arg1: SolverOptions, arg2: float) -> RawResult: ...
     def shaft_torque(self, states: numpy.typing.ArrayLike) -> numpy.ndarray: ...
     def voltage(self, states: numpy.typing.ArrayLike) -> numpy.ndarray: ...
