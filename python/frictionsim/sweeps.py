@@ -31,6 +31,7 @@ from __future__ import annotations
 import concurrent.futures as cf
 import itertools
 import math
+import pickle
 import time
 import traceback
 from collections.abc import Mapping, Sequence
@@ -252,6 +253,7 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
             for indices in chunks:
                 store(indices, _run_chunk(function, fixed, [points[i] for i in indices]))
         else:
+            _require_picklable(pool, function, fixed, points)
             futures = {pool.submit(_run_chunk, function, fixed, [points[i] for i in indices]): indices
                        for indices in chunks}
             try:
@@ -268,6 +270,21 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
                     future.cancel()
     return SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
                        elapsed=time.perf_counter() - started)
+
+
+def _require_picklable(pool: cf.Executor, function: Callable[..., Any], fixed: Mapping[str, Any],
+                       points: List[Dict[str, Any]]) -> None:
+    """Anything but a thread pool sends the function, fixed and the points to other processes: pickle them here
+    first. Failing inside the pool instead left ProcessPoolExecutor's shutdown deadlocked now and then."""
+    if isinstance(pool, cf.ThreadPoolExecutor):
+        return
+    for what, value in (("function", function), ("fixed", fixed), ("grid", points)):
+        try:
+            pickle.dumps(value)
+        except Exception as error:
+            raise SweepError(f"sweep: the {what} must pickle to run on {type(pool).__name__} ({type(error).__name__}:"
+                             f" {error}); use a top-level function (not a lambda or a local function) or a "
+                             f"ThreadPoolExecutor", -1, {}, error, "") from error
 
 
 def _name(function: Callable[..., Any]) -> str:

@@ -102,16 +102,20 @@ struct PowerLawCoefficient {
     static constexpr double fitted_velocity_ratio_min = 160.0;
     static constexpr double fitted_velocity_ratio_max = 2564.0;
 
+    /// |c| above this is no friction law: Table 5's exponents are -0.18 to -0.44, and (v_a/v_d)^c at c = 1e300
+    /// overflowed to inf.
+    static constexpr double max_exponent_magnitude = 10.0;
+
     explicit PowerLawCoefficient(Params params) : params_(params) {
         constexpr const char* who = "PowerLawCoefficient";
         detail::require_positive(who, "eta", params_.eta);
-        detail::require_finite(who, "exponent", params_.exponent);
+        require_exponent(params_.exponent);
     }
 
     /// From eq 15's form mu_df = eta (u_0 f / v_d)^c: eta' = eta / (2 pi)^c (eq 17).
     static PowerLawCoefficient from_eq15(double eta, double exponent) {
         detail::require_positive("PowerLawCoefficient", "eta", eta);
-        detail::require_finite("PowerLawCoefficient", "exponent", exponent);
+        require_exponent(exponent);
         return PowerLawCoefficient(Params{eta / std::pow(2.0 * pi, exponent), exponent});
     }
 
@@ -132,7 +136,12 @@ struct PowerLawCoefficient {
         constexpr const char* who = "PowerLawCoefficient";
         detail::require_positive(who, "vibration_velocity_amplitude", vibration_velocity_amplitude);
         detail::require_positive(who, "sliding_velocity", sliding_velocity);
-        return params_.eta * std::pow(vibration_velocity_amplitude / sliding_velocity, params_.exponent);
+        const double ratio = vibration_velocity_amplitude / sliding_velocity;
+        const double mu = params_.eta * std::pow(ratio, params_.exponent);
+        if (!(std::isfinite(mu) && mu > 0.0))  // NaN is never a result: an extreme ratio overflows or vanishes
+            detail::reject(who, "vibration_velocity_amplitude",
+                           "such that mu_df = eta' (v_a / v_d)^c is finite and positive (v_a / v_d given)", ratio);
+        return mu;
     }
 
     /// F_df = mu_df F_N [N]: magnitude of the mean friction force over whole vibration cycles, opposing the
@@ -144,6 +153,11 @@ struct PowerLawCoefficient {
     }
 
 private:
+    static void require_exponent(double exponent) {
+        if (!(std::abs(exponent) <= max_exponent_magnitude))
+            detail::reject("PowerLawCoefficient", "exponent", "in [-10, 10] (Table 5: -0.18 to -0.44)", exponent);
+    }
+
     Params params_;
 };
 

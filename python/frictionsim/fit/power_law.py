@@ -35,6 +35,8 @@ from typing import Optional, Tuple, Union
 import numpy as np
 import pandas as pd
 
+from ..errors import InvalidParameterError
+
 __all__ = ["PowerLawFit", "fit_power_law"]
 
 
@@ -100,20 +102,22 @@ def _fit(lubricant: Optional[str], velocity_ratio, mu_df) -> PowerLawFit:
     ratio = np.asarray(velocity_ratio, dtype=float)
     mu = np.asarray(mu_df, dtype=float)
     if ratio.size < 2:
-        raise ValueError(f"fit_power_law: need at least 2 runs to fit a line (lubricant {lubricant!r} has "
-                         f"{ratio.size})")
+        raise InvalidParameterError(f"fit_power_law: need at least 2 runs to fit a line (lubricant {lubricant!r} has "
+                         f"{ratio.size})", "table")
     if not (np.all(np.isfinite(ratio)) and np.all(ratio > 0) and np.all(np.isfinite(mu)) and np.all(mu > 0)):
-        raise ValueError(f"fit_power_law: velocity_ratio and mu_df must be positive and finite (lubricant "
-                         f"{lubricant!r}) to take logarithms")
+        raise InvalidParameterError(f"fit_power_law: velocity_ratio and mu_df must be positive and finite "
+                                    f"(lubricant {lubricant!r}) to take logarithms", "table")
     x, y = np.log10(ratio), np.log10(mu)
     dx = x - x.mean()
     sxx = float(dx @ dx)
     if sxx == 0.0:
-        raise ValueError(f"fit_power_law: all velocity ratios are equal (lubricant {lubricant!r}); no slope")
+        raise InvalidParameterError(f"fit_power_law: all velocity ratios are equal (lubricant {lubricant!r}); no "
+                                    f"slope", "table")
     slope = float(dx @ (y - y.mean())) / sxx
     intercept = float(y.mean() - slope * x.mean())
     residual = y - (slope * x + intercept)
     ss_tot = float(((y - y.mean()) ** 2).sum())
+    # all mu_df equal: the flat line fits exactly (R^2 = 1 by convention); NaN never leaves here
     r_squared = 1.0 - float(residual @ residual) / ss_tot if ss_tot > 0.0 else 1.0
     return PowerLawFit(lubricant, slope, intercept, r_squared, int(ratio.size), float(ratio.min()),
                        float(ratio.max()))
@@ -138,16 +142,21 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
 
         table = table4()
     if not isinstance(table, pd.DataFrame):
-        raise ValueError(f"fit_power_law: table must be a pandas DataFrame (got {type(table).__name__})")
+        raise InvalidParameterError(f"fit_power_law: table must be a pandas DataFrame (got {type(table).__name__})",
+                                    "table")
+    if table.empty:  # a pandas KeyError before
+        raise InvalidParameterError("fit_power_law: table has no rows (need at least 2 runs per lubricant)", "table")
     missing = [c for c in ("velocity_ratio", "mu_df") if c not in table.columns]
     if missing:
-        raise ValueError(f"fit_power_law: table must have the columns velocity_ratio and mu_df (missing "
-                         f"{', '.join(missing)})")
+        raise InvalidParameterError(f"fit_power_law: table must have the columns velocity_ratio and mu_df (missing "
+                                    f"{', '.join(missing)})", "table")
     if lubricant is not None and not isinstance(lubricant, str):
-        raise ValueError(f"fit_power_law: lubricant must be a name such as 'dry' (got {lubricant!r})")
+        raise InvalidParameterError(f"fit_power_law: lubricant must be a name such as 'dry' (got {lubricant!r})",
+                                    "lubricant")
     if "lubricant" not in table.columns:
         if lubricant is not None:
-            raise ValueError("fit_power_law: lubricant given but the table has no 'lubricant' column")
+            raise InvalidParameterError("fit_power_law: lubricant given but the table has no 'lubricant' column",
+                                        "lubricant")
         return _fit(None, table["velocity_ratio"], table["mu_df"])
 
     names = table["lubricant"].astype(str).str.lower()
@@ -155,8 +164,8 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
         key = lubricant.lower()
         rows = table[names == key]
         if rows.empty:
-            raise ValueError(f"fit_power_law: lubricant must be one of {', '.join(names.unique())} "
-                             f"(case-insensitive; got {lubricant!r})")
+            raise InvalidParameterError(f"fit_power_law: lubricant must be one of {', '.join(names.unique())} "
+                                        f"(case-insensitive; got {lubricant!r})", "lubricant")
         return _fit(key, rows["velocity_ratio"], rows["mu_df"])
 
     fits = [_fit(key, rows["velocity_ratio"], rows["mu_df"]).to_dict()

@@ -11,6 +11,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
+from ..errors import InvalidParameterError
 from .parameters import _PHYSICAL_META, _LawDef
 from .solver import _Fit
 
@@ -163,6 +164,18 @@ class IdentificationResult:
         return self.summary()
 
 
+def _finite_or_failed(fit: _Fit, ss_res: float, ss_tot: float) -> Tuple[bool, str]:
+    """Every fit result passes here: NaN or inf in the parameters or residual sums is never success, whatever the
+    optimiser said. (An infinite standard error is not a failure: it marks an undetermined parameter, flagged
+    not identifiable.)"""
+    values = {"ss_res": ss_res, "ss_tot": ss_tot, **{f"params[{k!r}]": v for k, v in fit.params.items()}}
+    bad = [name for name, value in values.items() if not math.isfinite(value)]
+    if not bad:
+        return fit.success, fit.message
+    return False, (f"non-finite result ({', '.join(bad[:4])}): the record's magnitudes overflow double precision or "
+                   f"the fit diverged; rescale the data; optimiser: {fit.message}")
+
+
 def _result(fit: _Fit, lawdef: _LawDef, *, method: str, experiment: str, signal_name: str, t: np.ndarray,
             measured: np.ndarray, rig: Any, initial_state: Optional[List[float]],
             started: float) -> IdentificationResult:
@@ -170,15 +183,19 @@ def _result(fit: _Fit, lawdef: _LawDef, *, method: str, experiment: str, signal_
     law_params = {k: fit.params[k] for k in lawdef.physical_names}
     law = lawdef.build(law_params)
     residual = fit.residual
-    ss_res = float(residual @ residual)
     centred = measured - measured.mean()
-    ss_tot = float(centred @ centred)
+    with np.errstate(over="ignore", invalid="ignore"):
+        ss_res, ss_tot = float(residual @ residual), float(centred @ centred)
+    if ss_tot == 0.0:  # R^2 is undefined, and a constant record shows no dynamics to identify
+        raise InvalidParameterError(f"{signal_name} is constant ({measured[0]!r} throughout): there is nothing to "
+                                    f"identify and R^2 is undefined", signal_name)
+    success, message = _finite_or_failed(fit, ss_res, ss_tot)
     return IdentificationResult(
         law_name=lawdef.name, law=law, params=dict(fit.params), stderr=fit.stderr, fitted=fit.fitted,
         covariance=fit.covariance, correlation=fit.correlation, identifiable=fit.identifiable, reasons=fit.reasons,
-        rms_residual=math.sqrt(ss_res / residual.size), r_squared=1.0 - ss_res / ss_tot if ss_tot > 0 else math.nan,
-        n_samples=int(measured.size), n_evaluations=fit.n_evaluations, n_failed=fit.n_failed, success=fit.success,
-        message=fit.message, method=method, experiment=experiment, signal_name=signal_name, t=t, measured=measured,
+        rms_residual=math.sqrt(ss_res / residual.size), r_squared=1.0 - ss_res / ss_tot,
+        n_samples=int(measured.size), n_evaluations=fit.n_evaluations, n_failed=fit.n_failed, success=success,
+        message=message, method=method, experiment=experiment, signal_name=signal_name, t=t, measured=measured,
         model=fit.signal, rig=rig, initial_state=initial_state,
         bounds={v.name: (v.lower, v.upper) for v in fit.spec.variables}, singular_values=fit.singular_values,
         condition_number=fit.condition_number, elapsed=time.perf_counter() - started)
