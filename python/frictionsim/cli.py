@@ -7,13 +7,23 @@
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
 target and moved into place (files already in the target that the command does not write are left alone).
+Ctrl-C or SIGTERM removes that temporary directory: nothing half-written is left behind.
+
+Where ``run`` writes: ``--out DIR`` when given (the caller's choice); else the scenario's ``output.directory``,
+relative to the scenario file's folder and confined to it: an absolute path, a ``..`` or a symbolic link that
+leads out of it is refused unless ``--allow-outside`` is given (a scenario file from elsewhere must not write
+anywhere it likes); else ``out/<file stem>`` in the working directory.
+
 Exit status: 0 on success, 2 for a bad scenario or command line (``error: <file>: <key>: <rule>`` on stderr),
-1 when a simulation stops early (with the time reached) or the outputs cannot be written.
+1 when a simulation stops early (with the time reached) or the outputs cannot be written, 130 on Ctrl-C, 143 on
+SIGTERM.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import math
 import os
 import shutil
 import sys
@@ -49,13 +59,43 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         parser.print_help(sys.stderr)
         return 2
     try:
-        return args.command(args)
+        with _terminate_as_exception():
+            return args.command(args)
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
+    except _Terminated:
+        print("error: terminated (SIGTERM)", file=sys.stderr)
+        return 143
     except ScenarioError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
     except CommandError as error:
         print(f"error: {error}", file=sys.stderr)
         return error.status
+
+
+class _Terminated(BaseException):
+    """SIGTERM, raised where the command is so that its clean-up (the staging directory) runs."""
+
+
+@contextmanager
+def _terminate_as_exception() -> Iterator[None]:
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():  # signals go to the main thread only
+        yield
+        return
+
+    def terminate(signum, frame):
+        raise _Terminated()
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -72,8 +112,12 @@ def _parser() -> argparse.ArgumentParser:
                               description="Simulate every case of a TOML scenario file; write per-case time "
                                           "series, summary.csv and PNG plots; print the summary.")
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    run.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, else "
-                                              "out/<file stem>)")
+    run.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, relative to "
+                                              "the file's folder and confined to it, else out/<file stem>)")
+    run.add_argument("--allow-outside", action="store_true",
+                     help="let the file's output.directory be absolute or lead out of the file's folder")
+    run.add_argument("--timeout", type=float, metavar="SECONDS",
+                     help="wall-clock budget of each simulation (overrides the file's solver.timeout)")
     run.set_defaults(command=_run)
 
     demo = commands.add_parser("demo", help="papers 000 and 001: Fig. 7 cases, friction reduction, Table 5 "
@@ -103,10 +147,14 @@ def _run(args) -> int:
     from .scenario import ScenarioRun, load, run_case
 
     scenario = load(args.scenario)
-    out = args.out if args.out is not None else Path(scenario.output.directory or Path("out") / scenario.name)
+    out = _output_directory(args, scenario)
     _check_target(out)
+    if args.timeout is not None and not (args.timeout > 0 and math.isfinite(args.timeout)):
+        raise CommandError(f"--timeout must be a positive number of seconds (got {args.timeout:g})", 2)
     runs = []
     for index, case in enumerate(scenario.cases, start=1):
+        if args.timeout is not None:
+            case = dataclasses.replace(case, solver=dataclasses.replace(case.solver, timeout=args.timeout))
         try:
             runs.append(run_case(case))
         except SimulationError as error:
@@ -166,10 +214,39 @@ def _fit_table5(args) -> int:
     return 0
 
 
+def _output_directory(args, scenario) -> Path:
+    """--out, else the scenario's output.directory confined to the file's folder, else out/<stem>."""
+    if args.out is not None:
+        return args.out
+    if scenario.output.directory is None:
+        return Path("out") / scenario.name
+    base = Path(args.scenario).absolute().parent
+    given = Path(scenario.output.directory)
+    target = base / given
+    if args.allow_outside:
+        return target
+    where = f"{args.scenario}: output.directory"
+    if given.is_absolute():
+        raise CommandError(f"{where}: must be relative to the scenario's folder (got the absolute path {given}); "
+                           f"pass --out or --allow-outside to write elsewhere", 2)
+    # resolve() follows '..' and symbolic links: what stays inside the folder after both is confined
+    try:
+        inside = target.resolve().is_relative_to(base.resolve())
+    except OSError as error:
+        raise CommandError(f"{where}: cannot resolve {given} ({error.strerror or error})", 2) from None
+    if not inside:
+        raise CommandError(f"{where}: {given} leads out of the scenario's folder {base} (through '..' or a symbolic "
+                           f"link); pass --out or --allow-outside to write elsewhere", 2)
+    return target
+
+
 # ----------------------------------------------------------------------------------------------- atomic outputs
 def _check_target(out: Path) -> None:
-    if out.exists() and not out.is_dir():
-        raise CommandError(f"{out}: output path exists and is not a directory", 2)
+    try:
+        if out.exists() and not out.is_dir():
+            raise CommandError(f"{out}: output path exists and is not a directory", 2)
+    except OSError as error:  # e.g. a component longer than the file system allows (ENAMETOOLONG)
+        raise CommandError(f"{out}: unusable output path ({error.strerror or error})", 2) from None
 
 
 def _write(out: Path, writer) -> List[Path]:
@@ -213,6 +290,9 @@ def _commit(stage: Path, target: Path) -> None:
         if destination.is_dir() or any(p.exists() and not p.is_dir() for p in destination.parents
                                        if target in p.parents or p == target):
             raise OSError(f"cannot write {destination}: a directory or file is in the way")
+        # a symbolic link below the target would carry the write elsewhere: never followed
+        if destination.is_symlink() or any(p.is_symlink() for p in destination.parents if target in p.parents):
+            raise OSError(f"cannot write {destination}: a symbolic link is in the way (not followed)")
     for source in files:
         destination = target / source.relative_to(stage)
         destination.parent.mkdir(parents=True, exist_ok=True)

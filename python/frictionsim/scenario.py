@@ -48,8 +48,9 @@ key by key, unless the case changes ``type``, in which case the default table is
     w_s [rad/s], reference_normal_force [N], branch_gap ("hold" or "error"); ``type = "fig7"``: the eq 6 set
     chosen to reproduce paper 001's Fig. 7 (:func:`frictionsim.torsional.fig7_friction`; optional branch_gap).
 ``solver``
-    t_end [s] (required), method (one of :data:`frictionsim.METHODS`), rtol, atol, and output_points (default
-    2001, evenly spaced over [0, t_end]) or output_step [s]. The ends of the averaging window are always
+    t_end [s] (required), method (one of :data:`frictionsim.METHODS`), rtol (in [1e-14, 0.1]), atol (>= 1e-20),
+    timeout [s] (wall-clock budget of each run), and output_points (default 2001, evenly spaced over [0, t_end],
+    at most 1e6) or output_step [s]. The ends of the averaging window are always
     recorded as well, so the mean friction is exact to solver tolerance.
 ``analysis``
     transient [s], cycles, period [s] (default: the rig's vibration period 1/f; required for a velocity_file).
@@ -61,7 +62,9 @@ key by key, unless the case changes ``type``, in which case the default table is
     stick fraction, mean friction torque [N m] over the whole cycles measured (see
     :mod:`frictionsim.scenario_torsional`).
 ``output`` (top level only)
-    directory (relative to the working directory; default ``out/<file stem>``), tables (subset of
+    directory (relative to the scenario file's folder, which it may not leave: no absolute path, no ``..`` or
+    symbolic link out of it, unless ``frictionsim run --allow-outside``; ignored when ``--out`` is given; default
+    ``out/<file stem>`` in the working directory), tables (subset of
     ["timeseries", "summary"]), plots (subset of ["friction_force", "hysteresis", "drive_force"]; torsional
     rigs: of ["disc_speed", "friction_torque_hysteresis", "phase_portrait"]), plot_window = [t_start, t_end] [s]
     (default: the last 3 vibration cycles; torsional: the last 10 s for disc_speed, [transient, t_end] for the
@@ -81,6 +84,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import stat
 import re
 import sys
 import time
@@ -125,9 +129,14 @@ _KINEMATIC_KEYS = {"normal_force": float, "sliding_velocity": float, "velocity_a
                    "frequency": float, "velocity_file": str}
 _HARMONIC = ("sliding_velocity", "velocity_amplitude", "frequency")
 #: Output rows a scenario may ask for: 1e7 rows of a few states are ~0.5 GB of CSV already.
-MAX_OUTPUT_POINTS = 10_000_000
+MAX_OUTPUT_POINTS = 1_000_000  # 1e7 took 4 minutes and 4.6 GB; 1e6 rows are ~100 MB of CSV per case
+#: Free text is printed and drawn in every plot: a 100,000-character title took 65 s to render.
+MAX_TITLE_CHARACTERS = 200
+MAX_DESCRIPTION_CHARACTERS = 4000
+#: A velocity_file is read whole: larger ones (or /dev/zero) are refused before reading.
+MAX_DATA_FILE_BYTES = 256 * 2**20
 
-_SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "output_points": int,
+_SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "timeout": float, "output_points": int,
                 "output_step": float}
 _ANALYSIS_KEYS = {"transient": float, "cycles": int, "period": float}
 _OUTPUT_KEYS = {"directory": str, "tables": list, "plots": list, "plot_window": list}
@@ -217,6 +226,7 @@ class SolverSpec:
     atol: float = 1e-10
     output_points: Optional[int] = 2001
     output_step: Optional[float] = None
+    timeout: Optional[float] = None  #: wall-clock budget of each run [s]
 
     def grid(self) -> np.ndarray:
         """The requested output times [s] over [0, t_end]."""
@@ -416,6 +426,10 @@ class _Parser:
         self.unknown(data, _TOP_KEYS, "")
         title = self.value(data.get("title", ""), str, "title")
         description = self.value(data.get("description", ""), str, "description")
+        for key, text, limit in (("title", title, MAX_TITLE_CHARACTERS),
+                                 ("description", description, MAX_DESCRIPTION_CHARACTERS)):
+            if len(text) > limit:
+                raise self.error(key, f"must be at most {limit} characters (got {len(text)})")
         if "case" in data:
             if isinstance(data["case"], dict):
                 raise self.error("case", "must be an array of tables: write [[case]], not [case]")
@@ -557,6 +571,15 @@ class _Parser:
         if not file.is_absolute() and self.source is not None:
             file = self.source.parent / file
         try:
+            status = file.stat()
+        except OSError as error:
+            raise self.error(path, f"cannot read {str(file)!r} ({error.strerror or error})") from None
+        if not stat.S_ISREG(status.st_mode):  # /dev/zero, a FIFO or a directory would be read forever or fail
+            raise self.error(path, f"{str(file)!r} must be a regular file")
+        if status.st_size > MAX_DATA_FILE_BYTES:
+            raise self.error(path, f"{str(file)!r} must be at most {MAX_DATA_FILE_BYTES // 2**20} MiB "
+                                   f"(it has {status.st_size / 2**20:.0f} MiB)")
+        try:
             lines = file.read_text(encoding="utf-8").splitlines()
         except OSError as error:
             raise self.error(path, f"cannot read {str(file)!r} ({error.strerror or error})") from None
@@ -596,15 +619,18 @@ class _Parser:
             values[key], paths[key] = self.value(value, _SOLVER_KEYS[key], key_path), key_path
         if "t_end" not in values:
             raise self.error(_join(path, "t_end"), "missing required value (simulated time, s)")
-        for key in ("t_end", "rtol", "atol", "output_step"):
+        for key in ("t_end", "rtol", "atol", "output_step", "timeout"):
             if key in values:
                 self.positive(values[key], paths[key])
         if values.get("method", "automatic") not in METHODS:
             raise self.error(paths["method"], f"must be one of {', '.join(METHODS)} (got {values['method']!r})")
         if "output_points" in values and "output_step" in values:
             raise self.error(paths["output_step"], "give output_points or output_step, not both")
-        if "rtol" in values and values["rtol"] >= 1.0:
-            raise self.error(paths["rtol"], f"must be < 1 (got {values['rtol']:g})")
+        if "rtol" in values and not 1e-14 <= values["rtol"] <= _core.SolverOptions.max_rtol:
+            raise self.error(paths["rtol"], f"must be in [1e-14, {_core.SolverOptions.max_rtol:g}]: looser, the "
+                                            f"error estimates bound nothing (got {values['rtol']:g})")
+        if "atol" in values and values["atol"] < _core.SolverOptions.min_atol:
+            raise self.error(paths["atol"], f"must be >= {_core.SolverOptions.min_atol:g} (got {values['atol']:g})")
         if "output_points" in values and not 2 <= values["output_points"] <= MAX_OUTPUT_POINTS:
             raise self.error(paths["output_points"],
                              f"must be in [2, {MAX_OUTPUT_POINTS:.0e}] (got {values['output_points']})")
@@ -825,7 +851,7 @@ def run_case(case: Case) -> Union[CaseRun, "_torsional.TorsionalCaseRun"]:
     t_a, t_b, cycles = case.window()
     start = time.perf_counter()
     result = simulate(rig, case.solver.t_end, method=case.solver.method, rtol=case.solver.rtol,
-                      atol=case.solver.atol, output_times=case.output_times())
+                      atol=case.solver.atol, output_times=case.output_times(), timeout=case.solver.timeout)
     wall = time.perf_counter() - start
     mean = result.mean_over_cycles(period=case.period, transient=t_a, cycles=cycles)
     return CaseRun(case, rig, result, float(mean), (t_a, t_b, cycles), wall)

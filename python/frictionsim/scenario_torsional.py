@@ -191,7 +191,7 @@ def run_case(case) -> TorsionalCaseRun:
     s = case.solver
     # through the module attribute, so that tests can replace scenario.simulate
     result = scenario.simulate(rig, s.t_end, method=s.method, rtol=s.rtol, atol=s.atol,
-                               output_times=case.output_times())
+                               output_times=case.output_times(), timeout=s.timeout)
     wall = time.perf_counter() - start
     cycle = limit_cycle(result, transient(case), stick_speed=stick_speed(case))
     return TorsionalCaseRun(case, rig, result, cycle, wall)
