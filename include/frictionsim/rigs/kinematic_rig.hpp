@@ -111,7 +111,9 @@ public:
     /// At a zero of v_r in slip s: where v_r heads next decides, reversal (-s), standstill (stick holding s) or
     /// a touch (s again). Leaving stick, |v_r| > 0 at the root: its sign.
     int switch_mode(double t, double*, int mode, const int*) const {
-        if (!is_slip(mode)) return sign_of(v_r_(t));
+        const double v = v_r_(t);
+        if (!is_slip(mode)) return sign_of(v);
+        if (mode * v < 0.0) return -mode;  // already across: the look-ahead could jump a dip narrower than it
         return heading(t, rest_holding(mode));
     }
 
