@@ -191,3 +191,37 @@ TEST_CASE("power law: rejects bad parameters and velocities, naming them", "[fri
         CHECK(message.find("PowerLawCoefficient: eta must be positive") != std::string::npos);
     }
 }
+
+TEST_CASE("power law: eta' and c in a physical range, and never an inf or NaN result", "[friction][power_law]") {
+    // Table 5: eta' 0.12-1.07, c -0.09 to -0.37. c = 1e300 returned inf for any ratio above 1 before.
+    for (const double exponent : {2.001, -2.001, 10.0, 1e300, -1e300}) {
+        INFO(exponent);
+        CHECK(rejected_parameter([&] { PowerLawCoefficient({0.2, exponent}); }) == "exponent");
+        CHECK(rejected_parameter([&] { PowerLawCoefficient::from_eq15(0.2, exponent); }) == "exponent");
+    }
+    for (const double eta : {10.001, 1e300}) {
+        INFO(eta);
+        CHECK(rejected_parameter([&] { PowerLawCoefficient({eta, -0.2}); }) == "eta");
+        CHECK(rejected_parameter([&] { PowerLawCoefficient::from_eq15(eta, -0.2); }) == "eta");
+    }
+    // eq 15's eta = 0.5 at c = -2 is eta' = 0.5 (2 pi)^2 = 19.7: outside, and named by what the caller typed
+    CHECK(rejected_parameter([] { PowerLawCoefficient::from_eq15(0.5, -2.0); }) == "eta");
+    CHECK_NOTHROW(PowerLawCoefficient({10.0, -2.0}));
+    CHECK_NOTHROW(PowerLawCoefficient({1e-6, 2.0}));
+    CHECK(rejection_message([] { PowerLawCoefficient({0.2, 5.0}); }).find("[-2, 2]") != std::string::npos);
+
+    // Within range, an extreme velocity ratio still overflows or underflows: named, never returned.
+    const PowerLawCoefficient steep({10.0, 2.0});
+    CHECK(rejected_parameter([&] { (void)steep.coefficient(1e300, 1e-300); }) == "vibration_velocity_amplitude");
+    CHECK(rejected_parameter([&] { (void)steep.coefficient(1e200, 1.0); }) == "vibration_velocity_amplitude");
+    CHECK(rejected_parameter([&] { (void)steep.coefficient(1e-300, 1e300); }) == "vibration_velocity_amplitude");
+    const PowerLawCoefficient falling({10.0, -2.0});
+    CHECK(rejected_parameter([&] { (void)falling.coefficient(1e-300, 1e300); }) == "vibration_velocity_amplitude");
+    CHECK(rejected_parameter([&] { (void)falling.coefficient(1e200, 1.0); }) == "vibration_velocity_amplitude");
+    CHECK(rejection_message([&] { (void)steep.coefficient(1e300, 1e-300); }).find("v_a / v_d") != std::string::npos);
+    CHECK(std::isfinite(steep.coefficient(1e100, 1.0)));
+    // F_df = mu_df F_N and v_a = 2 pi f u_0 overflow too: named
+    CHECK(rejected_parameter([&] { (void)steep.friction_force(1e308, 10.0, 1.0); }) == "normal_force");
+    CHECK(rejected_parameter([] { (void)frictionsim::vibration_velocity_amplitude(1e300, 1e300); }) == "amplitude");
+    CHECK(std::isfinite(frictionsim::vibration_velocity_amplitude(1e150, 1e150)));
+}

@@ -19,6 +19,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <sstream>
 #include <string>
 #include <string_view>
 
@@ -88,7 +89,9 @@ inline double vibration_velocity_amplitude(double amplitude, double frequency) {
     constexpr const char* who = "vibration_velocity_amplitude";
     detail::require_non_negative(who, "amplitude", amplitude);
     detail::require_non_negative(who, "frequency", frequency);
-    return 2.0 * pi * frequency * amplitude;
+    const double velocity = 2.0 * pi * frequency * amplitude;
+    if (!std::isfinite(velocity)) detail::reject(who, "amplitude", "such that 2 pi f u_0 is finite", amplitude);
+    return velocity;
 }
 
 /// mu_df = eta' (v_a / v_d)^c (paper 000, eq 17). See the header comment for the range it was fitted over.
@@ -102,21 +105,25 @@ struct PowerLawCoefficient {
     static constexpr double fitted_velocity_ratio_min = 160.0;
     static constexpr double fitted_velocity_ratio_max = 2564.0;
 
-    /// |c| above this is no friction law: Table 5's exponents are -0.18 to -0.44, and (v_a/v_d)^c at c = 1e300
-    /// overflowed to inf.
-    static constexpr double max_exponent_magnitude = 10.0;
+    /// eta' is mu_df at v_a = v_d, a friction coefficient: at most 10, the identification's upper bound on any mu
+    /// (Table 5: 0.12 to 1.07). |c| at most 2: the friction-vector effect alone gives a cycle mean falling as
+    /// (v_a/v_d)^-1 at large ratios, Table 5's exponents are -0.09 to -0.37, and c = 1e300 returned inf before.
+    static constexpr double max_eta = 10.0;
+    static constexpr double max_exponent_magnitude = 2.0;
 
     explicit PowerLawCoefficient(Params params) : params_(params) {
-        constexpr const char* who = "PowerLawCoefficient";
-        detail::require_positive(who, "eta", params_.eta);
+        require_eta(params_.eta);
         require_exponent(params_.exponent);
     }
 
-    /// From eq 15's form mu_df = eta (u_0 f / v_d)^c: eta' = eta / (2 pi)^c (eq 17).
+    /// From eq 15's form mu_df = eta (u_0 f / v_d)^c: eta' = eta / (2 pi)^c (eq 17), in the constructor's range.
     static PowerLawCoefficient from_eq15(double eta, double exponent) {
-        detail::require_positive("PowerLawCoefficient", "eta", eta);
+        detail::require_positive(who, "eta", eta);
         require_exponent(exponent);
-        return PowerLawCoefficient(Params{eta / std::pow(2.0 * pi, exponent), exponent});
+        const double eta_prime = eta / std::pow(2.0 * pi, exponent);
+        if (!(eta_prime <= max_eta))
+            detail::reject(who, "eta", "such that eta' = eta / (2 pi)^c is at most 10", eta);
+        return PowerLawCoefficient(Params{eta_prime, exponent});
     }
 
     /// Table 5's fit for one lubricant, eta' and c exactly as printed.
@@ -131,16 +138,20 @@ struct PowerLawCoefficient {
     const Params& params() const noexcept { return params_; }
 
     /// mu_df [-] for vibration velocity amplitude v_a [m/s] and sliding velocity v_d [m/s], both > 0. Only the
-    /// ratio matters, so any common unit works.
+    /// ratio matters, so any common unit works. A ratio so extreme that mu_df over- or underflows is rejected,
+    /// naming v_a: never an inf, NaN or 0 returned.
     double coefficient(double vibration_velocity_amplitude, double sliding_velocity) const {
-        constexpr const char* who = "PowerLawCoefficient";
         detail::require_positive(who, "vibration_velocity_amplitude", vibration_velocity_amplitude);
         detail::require_positive(who, "sliding_velocity", sliding_velocity);
         const double ratio = vibration_velocity_amplitude / sliding_velocity;
         const double mu = params_.eta * std::pow(ratio, params_.exponent);
-        if (!(std::isfinite(mu) && mu > 0.0))  // NaN is never a result: an extreme ratio overflows or vanishes
-            detail::reject(who, "vibration_velocity_amplitude",
-                           "such that mu_df = eta' (v_a / v_d)^c is finite and positive (v_a / v_d given)", ratio);
+        if (!(std::isfinite(mu) && mu > 0.0)) {
+            std::ostringstream rule;
+            rule.precision(17);
+            rule << "such that v_a / v_d (v_d = " << sliding_velocity << ") gives a finite, positive mu_df = eta' "
+                 << "(v_a / v_d)^c (c = " << params_.exponent << ")";
+            detail::reject(who, "vibration_velocity_amplitude", rule.str().c_str(), vibration_velocity_amplitude);
+        }
         return mu;
     }
 
@@ -148,14 +159,25 @@ struct PowerLawCoefficient {
     /// sliding (eq 14). normal_force F_N [N] >= 0; v_a and v_d [m/s] > 0.
     double friction_force(double normal_force, double vibration_velocity_amplitude,
                           double sliding_velocity) const {
-        detail::require_non_negative("PowerLawCoefficient", "normal_force", normal_force);
-        return normal_force * coefficient(vibration_velocity_amplitude, sliding_velocity);
+        detail::require_non_negative(who, "normal_force", normal_force);
+        const double force = normal_force * coefficient(vibration_velocity_amplitude, sliding_velocity);
+        if (!std::isfinite(force))
+            detail::reject(who, "normal_force", "such that F_df = mu_df F_N is finite", normal_force);
+        return force;
     }
 
 private:
+    static constexpr const char* who = "PowerLawCoefficient";
+
+    static void require_eta(double eta) {
+        detail::require_positive(who, "eta", eta);
+        if (!(eta <= max_eta))
+            detail::reject(who, "eta", "at most 10 (it is mu_df at v_a = v_d; Table 5: 0.12 to 1.07)", eta);
+    }
+
     static void require_exponent(double exponent) {
         if (!(std::abs(exponent) <= max_exponent_magnitude))
-            detail::reject("PowerLawCoefficient", "exponent", "in [-10, 10] (Table 5: -0.18 to -0.44)", exponent);
+            detail::reject(who, "exponent", "in [-2, 2] (Table 5: -0.09 to -0.37)", exponent);
     }
 
     Params params_;
