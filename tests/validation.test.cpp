@@ -198,7 +198,7 @@ TEST_CASE("ElastoPlastic rejects every non-physical parameter, naming it", "[val
 TEST_CASE("power-law coefficient rejects non-physical parameters, naming them", "[validation][power_law]") {
     const PowerLawCoefficient law({0.2, -0.2});
     std::vector<double> bad_exponent = non_finite;
-    for (double v : {10.001, -10.001, 1e300, -1e300}) bad_exponent.push_back(v);  // 1e300 returned inf before
+    for (double v : {2.001, -2.001, 1e300, -1e300}) bad_exponent.push_back(v);  // 1e300 returned inf before
     check_rules({
         {"eta", not_positive, [](double v) { (void)PowerLawCoefficient({v, -0.2}); }},
         {"exponent", bad_exponent, [](double v) { (void)PowerLawCoefficient({0.2, v}); }},
@@ -213,9 +213,9 @@ TEST_CASE("power-law coefficient rejects non-physical parameters, naming them", 
     expect_invalid("lubricant", [] { (void)lubricant_from_name("mud"); });
     expect_invalid("lubricant", [] { (void)PowerLawCoefficient::from_table5(""); });
     CHECK_NOTHROW(PowerLawCoefficient({0.2, 0.0}));
-    CHECK_NOTHROW(PowerLawCoefficient({0.2, -10.0}));
+    CHECK_NOTHROW(PowerLawCoefficient({0.2, -2.0}));
     // the largest exponent with an extreme ratio overflows: named, never inf
-    const PowerLawCoefficient steep({1.0, 10.0});
+    const PowerLawCoefficient steep({1.0, 2.0});
     CHECK(rejected_parameter([&] { (void)steep.coefficient(1e300, 1e-300); }) == "vibration_velocity_amplitude");
     CHECK(law.friction_force(0.0, 0.5, 1e-3) == 0.0);
     CHECK(vibration_velocity_amplitude(0.0, 0.0) == 0.0);

@@ -56,7 +56,7 @@ def test_fit_power_law_of_equal_coefficients_is_a_flat_line_not_nan():
     assert fit.slope == 0.0 and fit.r_squared == 1.0
 
 
-@pytest.mark.parametrize("exponent", [1e300, -1e300, 10.5, math.inf])
+@pytest.mark.parametrize("exponent", [1e300, -1e300, 2.5, math.inf])
 def test_power_law_exponent_outside_any_friction_law_is_refused(exponent):
     with pytest.raises(fs.InvalidParameterError) as info:  # coefficient() returned inf before
         fs.PowerLawCoefficient(eta=0.2, exponent=exponent)
@@ -64,7 +64,7 @@ def test_power_law_exponent_outside_any_friction_law_is_refused(exponent):
 
 
 def test_power_law_coefficient_that_would_overflow_is_named():
-    law = fs.PowerLawCoefficient(eta=1.0, exponent=10.0)
+    law = fs.PowerLawCoefficient(eta=1.0, exponent=2.0)
     with pytest.raises(fs.InvalidParameterError) as info:
         law.coefficient(1e300, 1e-300)
     assert info.value.parameter == "vibration_velocity_amplitude"
