@@ -6,6 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import frictionsim as fs
 from frictionsim import data
 from frictionsim.fit import PowerLawFit, fit_power_law
 
@@ -141,8 +142,87 @@ def test_bad_input_raises():
     with pytest.raises(ValueError, match="lubricant must be one of"):
         fit_power_law(lubricant="honey")
     with pytest.raises(ValueError, match="positive"):
-        fit_power_law(pd.DataFrame({"velocity_ratio": [1.0, 2.0], "mu_df": [0.1, 0.0]}))
-    with pytest.raises(ValueError, match="at least 2"):
+        fit_power_law(pd.DataFrame({"velocity_ratio": [1.0, 2.0, 3.0], "mu_df": [0.1, 0.0, 0.2]}))
+    with pytest.raises(ValueError, match="at least 3"):
         fit_power_law(pd.DataFrame({"velocity_ratio": [1.0], "mu_df": [0.1]}))
-    with pytest.raises(ValueError, match="equal"):
-        fit_power_law(pd.DataFrame({"velocity_ratio": [5.0, 5.0], "mu_df": [0.1, 0.2]}))
+    with pytest.raises(ValueError, match="velocity_ratio must vary"):
+        fit_power_law(pd.DataFrame({"velocity_ratio": [5.0, 5.0, 5.0], "mu_df": [0.1, 0.2, 0.3]}))
+
+
+# ------------------------------------------------------------------------ issue 11: the table is named, not a KeyError
+TABLE = pd.DataFrame({"lubricant": ["dry"] * 3 + ["obm"] * 3, "velocity_ratio": [200.0, 400.0, 800.0] * 2,
+                      "mu_df": [0.10, 0.09, 0.08, 0.04, 0.035, 0.03]})
+
+
+def _with(column, values):
+    table = TABLE.copy()
+    table[column] = values
+    return table
+
+
+@pytest.mark.parametrize("table, words", [
+    (pd.DataFrame(columns=["lubricant", "velocity_ratio", "mu_df"]), "no rows"),  # a pandas KeyError before
+    (pd.DataFrame(), "missing velocity_ratio, mu_df"),
+    (TABLE.drop(columns="mu_df"), "missing mu_df"),
+    (TABLE.iloc[:4], "at least 3 runs"),  # obm has one run
+    (TABLE.iloc[[0, 1, 3, 4, 5]], "at least 3 runs"),  # dry has two: a line through them is exact, R^2 = 1 always
+    (_with("velocity_ratio", [200.0, 0.0, 800.0] * 2), "positive"),
+    (_with("velocity_ratio", [200.0, -400.0, 800.0] * 2), "positive"),
+    (_with("velocity_ratio", [200.0, math.nan, 800.0] * 2), "positive and finite"),
+    (_with("mu_df", [0.1, math.inf, 0.08] * 2), "positive and finite"),
+    (_with("velocity_ratio", ["fast", "slow", "slower"] * 2), "must hold numbers"),
+    (_with("lubricant", ["dry", None, "dry", "obm", "obm", "obm"]), "must name every run"),  # KeyError before
+    ([[200.0, 0.1]], "DataFrame"),
+])
+def test_an_unusable_table_is_named(table, words):
+    with pytest.raises(fs.InvalidParameterError, match=words) as info:
+        fit_power_law(table)
+    assert info.value.parameter == "table"
+
+
+@pytest.mark.parametrize("lubricant", [3, "honey"])
+def test_an_unusable_lubricant_is_named(lubricant):
+    with pytest.raises(fs.InvalidParameterError) as info:
+        fit_power_law(TABLE, lubricant=lubricant)
+    assert info.value.parameter == "lubricant"
+
+
+@pytest.mark.parametrize("mu_df", [[0.1] * 7, [0.3] * 7, [0.3 + k * np.spacing(0.3) for k in (0, 1, 0, 1, 0, 1, 0)]])
+def test_constant_mu_df_has_no_r_squared(mu_df):
+    # [0.3] * 7: log10's mean is an ulp off, so SS_tot was 1e-33 and R^2 whatever rounding made of 0/0
+    table = pd.DataFrame({"velocity_ratio": np.geomspace(100.0, 2000.0, 7), "mu_df": mu_df})
+    with pytest.raises(fs.InvalidParameterError, match="mu_df must vary.*R\\^2 is undefined") as info:
+        fit_power_law(table)
+    assert info.value.parameter == "table"
+
+
+def test_velocity_ratios_equal_to_within_rounding_have_no_slope():
+    ratios = [300.0, 300.0 + np.spacing(300.0), 300.0]  # a slope of ~1e13 before
+    with pytest.raises(fs.InvalidParameterError, match="velocity_ratio must vary.*no slope") as info:
+        fit_power_law(pd.DataFrame({"velocity_ratio": ratios, "mu_df": [0.1, 0.2, 0.3]}))
+    assert info.value.parameter == "table"
+
+
+def test_a_line_whose_eta_overflows_is_refused_not_returned():
+    # slope 100 through ratios of 1e-300: eta' = 10**29700 (an OverflowError from to_dict() before)
+    table = pd.DataFrame({"velocity_ratio": [1e-300, 1e-299, 1e-298], "mu_df": [1e-300, 1e-200, 1e-100]})
+    with pytest.raises(fs.InvalidParameterError, match="eta_prime") as info:
+        fit_power_law(table)
+    assert info.value.parameter == "table"
+
+
+def test_every_returned_fit_is_finite(fits):
+    assert np.all(np.isfinite(fits.to_numpy(dtype=float)))
+
+
+@pytest.mark.parametrize("v_a, v_d, parameter", [
+    (0.0, 1e-3, "velocity_amplitude"), (-1.0, 1e-3, "velocity_amplitude"), (math.nan, 1e-3, "velocity_amplitude"),
+    (0.5, 0.0, "sliding_velocity"), (0.5, [1e-3, -1e-3], "sliding_velocity"), ("fast", 1e-3, "velocity_amplitude"),
+    (1e-300, 1e300, "velocity_amplitude"),  # (v_a / v_d)^c = 0^-0.37: inf before
+    (1e300, 1e-300, "velocity_amplitude"),  # v_a / v_d = inf: 0 before
+])
+def test_coefficient_of_a_fit_is_finite_or_refused(v_a, v_d, parameter):
+    fit = fit_power_law(lubricant="dry")
+    with pytest.raises(fs.InvalidParameterError) as info:
+        fit.coefficient(v_a, v_d)
+    assert info.value.parameter == parameter

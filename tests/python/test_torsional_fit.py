@@ -290,3 +290,45 @@ def test_guard_longer_than_the_record_is_named():
     with pytest.raises(ValueError, match="guard") as info:
         fit_hysteretic_friction(w, al, np.ones(400), guard=300)
     assert info.value.parameter == "guard"
+
+
+# ------------------------------------------------------------------------------ NaN / inf never leave a fit (issue 11)
+def test_fit_is_exact_on_records_of_any_representable_magnitude():
+    """w and al of 1e100, T of 1e200: squares of the design overflowed (NaN coefficients) before; the fit is now done
+    in units of each signal's largest value and scales exactly."""
+    law = fs.HystereticFriction(**HYSTERETIC)
+    w, al, torque = synthetic_samples(law)
+    reference = fit_hysteretic_friction(w, al, torque, guard=0)
+    big = fit_hysteretic_friction(1e100 * w, 1e100 * al, 1e200 * torque, guard=0, stick_speed=1e-3 * 1e100)
+    scale = np.array([1e200, 1e100, 1e100, 1.0, 1.0, 1.0])  # T / (w^i al^j) for 1, w, al, w^2, w al, al^2
+    for ours, ref in ((big.accelerating, reference.accelerating), (big.decelerating, reference.decelerating)):
+        np.testing.assert_allclose(ours.coefficients, np.array(ref.coefficients) * scale, rtol=1e-9)
+        assert ours.r_squared == pytest.approx(ref.r_squared, abs=1e-12)
+        assert ours.rmse == pytest.approx(ref.rmse * 1e200, rel=1e-3, abs=1e188)
+    assert big.stick_slope == pytest.approx(reference.stick_slope * 1e100, rel=1e-9)
+
+
+def test_fit_whose_coefficients_overflow_names_the_input():
+    w, al, torque = synthetic_samples(fs.HystereticFriction(**HYSTERETIC))
+    # T / w^2 = 1e250 / 1e-200: no double holds the w^2 coefficient
+    with pytest.raises(fs.InvalidParameterError, match="finite in double precision") as info:
+        fit_hysteretic_friction(1e-100 * w, 1e-100 * al, 1e250 * torque, guard=0)
+    assert info.value.parameter == "friction_torque"
+
+
+def test_fit_of_a_constant_branch_says_r_squared_is_undefined():
+    # eq 6 with a constant accelerating level: R^2 = 1 - 0/0 there (reported as 1 before)
+    law = fs.HystereticFriction(1300.0, accelerating=(0.95, 0, 0, 0, 0, 0), decelerating=HYSTERETIC["decelerating"])
+    with pytest.raises(fs.InvalidParameterError, match="accelerating branch must vary.*R\\^2 is undefined") as info:
+        fit_hysteretic_friction(*synthetic_samples(law), guard=0)
+    assert info.value.parameter == "friction_torque"
+
+
+def test_estimate_whose_derivatives_overflow_names_the_angle():
+    t = np.arange(0.0, 1.0, DT)
+    with pytest.raises(fs.InvalidParameterError, match="finite in double precision") as info:  # inf torque before
+        estimate_friction_torque(t, 1e305 * np.sin(20 * t), np.zeros_like(t))
+    assert info.value.parameter == "disc_angle"
+    with pytest.raises(fs.InvalidParameterError, match="finite in double precision") as info:
+        estimate_friction_torque(t, np.sin(20 * t), np.sin(20 * t), disc_inertia=1e306)
+    assert info.value.parameter == "disc_inertia"

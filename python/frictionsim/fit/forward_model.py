@@ -9,6 +9,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
+from .._core import SolverOptions
 from ..errors import SimulationError
 from ..simulation import simulate
 from .validation import _reject
@@ -67,7 +68,8 @@ def _atol_per_state(names: Sequence[str], force_atol: float, *, law_stiffness: f
             out.append(force_atol * duration * speed)
         else:
             out.append(force_atol)
-    return out
+    # not below the engine's floor: a record of micro-newtons against a stiff contact would fail every run
+    return [max(atol, SolverOptions.min_atol) for atol in out]
 
 
 def _with_state_atol(sim_kwargs: Mapping[str, Any], names: Sequence[str], force_atol: float,

@@ -28,7 +28,7 @@ from .parameters import _INITIAL_FORCE, _law_def, _LawDef, _Param, _stiffness_fi
 from .result import IdentificationResult, _result
 from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds, _user_values
 from .solver import _fit, _fit_setup
-from .validation import _normal_force, _record, _reject, _vector, _weights
+from .validation import _normal_force, _record, _reject, _summable, _varying, _vector, _weights
 
 __all__ = ["identify", "identify_dahl", "identify_lugre", "identify_elasto_plastic", "identify_stribeck"]
 
@@ -103,6 +103,7 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
     lawdef, method, opts = _fit_setup(law, method, solver_options)
     t, v = _record(t, relative_velocity, "relative_velocity")
     force = _vector("friction_force", friction_force, t.size)
+    _summable("friction_force", _varying("friction_force", force))
     n_arg, n0 = _normal_force(normal_force, t)
     n_samples = np.full(t.size, n_arg) if isinstance(n_arg, float) else np.interp(t, n_arg[0], n_arg[1])
     w = _weights(weights, t.size)

@@ -30,12 +30,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
-from typing import Optional, Tuple, Union
+from typing import NoReturn, Optional, Tuple, Union
 
 import numpy as np
 import pandas as pd
 
 from ..errors import InvalidParameterError
+from .quality import _fit_quality, _require_finite
+from .validation import _varying
 
 __all__ = ["PowerLawFit", "fit_power_law"]
 
@@ -75,7 +77,8 @@ class PowerLawFit:
 
     @property
     def adjusted_r_squared(self) -> float:
-        """1 - (1 - R^2)(n - 1)/(n - 2); NaN for n <= 2. Reported because it is the closest to Table 5's R^2."""
+        """1 - (1 - R^2)(n - 1)/(n - 2). Reported because it is the closest to Table 5's R^2. NaN for n <= 2,
+        which fit_power_law never returns (it needs 3 runs)."""
         if self.n_runs <= 2:
             return math.nan
         return 1.0 - (1.0 - self.r_squared) * (self.n_runs - 1) / (self.n_runs - 2)
@@ -86,9 +89,16 @@ class PowerLawFit:
         return (self.eta_prime, self.exponent)
 
     def coefficient(self, velocity_amplitude, sliding_velocity):
-        """mu_df = eta' (v_a / v_d)^c [-]; v_a and v_d > 0 in any common unit (only the ratio matters)."""
-        ratio = np.asarray(velocity_amplitude, dtype=float) / np.asarray(sliding_velocity, dtype=float)
-        return self.eta_prime * ratio ** self.exponent
+        """mu_df = eta' (v_a / v_d)^c [-]; v_a and v_d > 0 in any common unit (only the ratio matters). A ratio so
+        extreme that mu_df overflows is refused, naming the argument, as PowerLawCoefficient does."""
+        v_a = _positive_velocities("velocity_amplitude", velocity_amplitude)
+        v_d = _positive_velocities("sliding_velocity", sliding_velocity)
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            ratio = v_a / v_d
+            mu = self.eta_prime * ratio ** self.exponent
+        _require_finite("PowerLawFit.coefficient", {"v_a / v_d": ratio, "mu_df": mu},
+                        {"velocity_amplitude": v_a, "sliding_velocity": v_d})
+        return mu
 
     def to_dict(self) -> dict:
         """The fields plus eta_prime, exponent, eta_eq15 and adjusted_r_squared."""
@@ -98,29 +108,54 @@ class PowerLawFit:
         return row
 
 
-def _fit(lubricant: Optional[str], velocity_ratio, mu_df) -> PowerLawFit:
-    ratio = np.asarray(velocity_ratio, dtype=float)
-    mu = np.asarray(mu_df, dtype=float)
-    if ratio.size < 2:
-        raise InvalidParameterError(f"fit_power_law: need at least 2 runs to fit a line (lubricant {lubricant!r} has "
-                         f"{ratio.size})", "table")
-    if not (np.all(np.isfinite(ratio)) and np.all(ratio > 0) and np.all(np.isfinite(mu)) and np.all(mu > 0)):
-        raise InvalidParameterError(f"fit_power_law: velocity_ratio and mu_df must be positive and finite "
-                                    f"(lubricant {lubricant!r}) to take logarithms", "table")
+def _positive_velocities(name: str, value) -> np.ndarray:
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidParameterError(f"{name} must be a number or an array of numbers [m/s] (got {value!r})",
+                                    name) from None
+    if not np.all(np.isfinite(array) & (array > 0.0)):
+        raise InvalidParameterError(f"{name} must be positive and finite (got {value!r})", name)
+    return array
+
+
+def _column(rows: pd.DataFrame, column: str, lubricant: Optional[str]) -> np.ndarray:
+    """One column of a lubricant's runs as positive, finite floats (logarithms are taken)."""
+    where = "" if lubricant is None else f" (lubricant {lubricant!r})"
+    try:
+        values = rows[column].to_numpy(dtype=float)
+    except (TypeError, ValueError):
+        _reject(f"column {column} must hold numbers{where}")
+    if not np.all(np.isfinite(values) & (values > 0.0)):
+        bad = values[~(np.isfinite(values) & (values > 0.0))][0]
+        _reject(f"column {column} must be positive and finite to take logarithms{where}; got {bad}")
+    return values
+
+
+def _fit(lubricant: Optional[str], rows: pd.DataFrame) -> PowerLawFit:
+    where = "" if lubricant is None else f" of lubricant {lubricant!r}"
+    if len(rows) < 3:  # through 2 points the line is exact: R^2 = 1 whatever they are, no residual to judge it
+        _reject(f"needs at least 3 runs per line, to fit one and judge it by R^2 (the runs{where} are {len(rows)})")
+    ratio, mu = _column(rows, "velocity_ratio", lubricant), _column(rows, "mu_df", lubricant)
+    _varying("fit_power_law: table column velocity_ratio", ratio, "table", where, "so the line has no slope")
+    _varying("fit_power_law: table column mu_df", mu, "table", where)
     x, y = np.log10(ratio), np.log10(mu)
     dx = x - x.mean()
-    sxx = float(dx @ dx)
-    if sxx == 0.0:
-        raise InvalidParameterError(f"fit_power_law: all velocity ratios are equal (lubricant {lubricant!r}); no "
-                                    f"slope", "table")
-    slope = float(dx @ (y - y.mean())) / sxx
+    slope = float(dx @ (y - y.mean())) / float(dx @ dx)
     intercept = float(y.mean() - slope * x.mean())
-    residual = y - (slope * x + intercept)
-    ss_tot = float(((y - y.mean()) ** 2).sum())
-    # all mu_df equal: the flat line fits exactly (R^2 = 1 by convention); NaN never leaves here
-    r_squared = 1.0 - float(residual @ residual) / ss_tot if ss_tot > 0.0 else 1.0
+    _, r_squared = _fit_quality(y, slope * x + intercept - y)
+    with np.errstate(over="ignore"):
+        eta_prime = np.power(10.0, intercept)
+        eta_eq15 = eta_prime * np.power(2.0 * math.pi, slope)
+    _require_finite("fit_power_law", {"slope": slope, "intercept": intercept, "r_squared": r_squared,
+                                      "eta_prime": eta_prime, "eta_eq15": eta_eq15},
+                    {"table": np.concatenate([ratio, mu])})
     return PowerLawFit(lubricant, slope, intercept, r_squared, int(ratio.size), float(ratio.min()),
                        float(ratio.max()))
+
+
+def _reject(rule: str, parameter: str = "table") -> NoReturn:
+    raise InvalidParameterError(f"fit_power_law: {parameter} {rule}", parameter)
 
 
 def fit_power_law(table: Optional[pd.DataFrame] = None, *,
@@ -135,41 +170,43 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
     Returns a :class:`PowerLawFit` when ``lubricant`` is given (case-insensitive) or the table has no
     ``lubricant`` column, otherwise a DataFrame indexed by lubricant (in order of first appearance) with columns
     slope, intercept, eta_prime, exponent, eta_eq15, r_squared, adjusted_r_squared, n_runs,
-    velocity_ratio_min, velocity_ratio_max. Raises ValueError for an unknown lubricant or unusable data.
+    velocity_ratio_min, velocity_ratio_max.
+
+    Raises InvalidParameterError (a ValueError) naming ``table`` or ``lubricant``: not a DataFrame, no rows, a
+    missing column or lubricant name, an unknown lubricant, fewer than 3 runs in a line, a velocity ratio or
+    mu_df that is not a positive number, all velocity ratios equal (no slope) or all mu_df equal (R^2 undefined),
+    or a line whose eta' or eta_eq15 overflows.
     """
     if table is None:
         from frictionsim.data import table4  # late import: keeps this module usable on any table alone
 
         table = table4()
     if not isinstance(table, pd.DataFrame):
-        raise InvalidParameterError(f"fit_power_law: table must be a pandas DataFrame (got {type(table).__name__})",
-                                    "table")
-    if table.empty:  # a pandas KeyError before
-        raise InvalidParameterError("fit_power_law: table has no rows (need at least 2 runs per lubricant)", "table")
+        _reject(f"must be a pandas DataFrame (got {type(table).__name__})")
     missing = [c for c in ("velocity_ratio", "mu_df") if c not in table.columns]
     if missing:
-        raise InvalidParameterError(f"fit_power_law: table must have the columns velocity_ratio and mu_df (missing "
-                                    f"{', '.join(missing)})", "table")
+        _reject(f"must have the columns velocity_ratio and mu_df (missing {', '.join(missing)})")
+    if table.empty:  # a pandas KeyError before
+        _reject("has no rows (a line needs at least 3 runs per lubricant)")
     if lubricant is not None and not isinstance(lubricant, str):
-        raise InvalidParameterError(f"fit_power_law: lubricant must be a name such as 'dry' (got {lubricant!r})",
-                                    "lubricant")
+        _reject(f"must be a name such as 'dry' (got {lubricant!r})", "lubricant")
     if "lubricant" not in table.columns:
         if lubricant is not None:
-            raise InvalidParameterError("fit_power_law: lubricant given but the table has no 'lubricant' column",
-                                        "lubricant")
-        return _fit(None, table["velocity_ratio"], table["mu_df"])
+            _reject("given, but the table has no 'lubricant' column", "lubricant")
+        return _fit(None, table)
 
+    unnamed = table["lubricant"].isna()
+    if unnamed.any():  # pandas' groupby would drop these runs silently
+        _reject(f"column lubricant must name every run (row {table.index[unnamed.to_numpy()][0]!r} has none)")
     names = table["lubricant"].astype(str).str.lower()
     if lubricant is not None:
         key = lubricant.lower()
         rows = table[names == key]
         if rows.empty:
-            raise InvalidParameterError(f"fit_power_law: lubricant must be one of {', '.join(names.unique())} "
-                                        f"(case-insensitive; got {lubricant!r})", "lubricant")
-        return _fit(key, rows["velocity_ratio"], rows["mu_df"])
+            _reject(f"must be one of {', '.join(names.unique())} (case-insensitive; got {lubricant!r})", "lubricant")
+        return _fit(key, rows)
 
-    fits = [_fit(key, rows["velocity_ratio"], rows["mu_df"]).to_dict()
-            for key, rows in table.groupby(names, sort=False)]
+    fits = [_fit(key, rows).to_dict() for key, rows in table.groupby(names, sort=False)]
     columns = ["lubricant", "slope", "intercept", "eta_prime", "exponent", "eta_eq15", "r_squared",
                "adjusted_r_squared", "n_runs", "velocity_ratio_min", "velocity_ratio_max"]
     return pd.DataFrame(fits)[columns].set_index("lubricant")

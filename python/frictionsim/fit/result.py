@@ -11,8 +11,8 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from ..errors import InvalidParameterError
 from .parameters import _PHYSICAL_META, _LawDef
+from .quality import _finite_or_failed, _fit_quality, _non_finite
 from .solver import _Fit
 
 __all__ = ["IdentificationResult"]
@@ -26,8 +26,8 @@ class IdentificationResult:
     ----------
     law_name : str
         "Dahl", "LuGre", "ElastoPlastic" or "Stribeck".
-    law : fs.Dahl | fs.LuGre | fs.ElastoPlastic | fs.Stribeck
-        Ready to use, e.g. ``fs.AxialVibrationRig(friction=result.law)``.
+    law : fs.Dahl | fs.LuGre | fs.ElastoPlastic | fs.Stribeck or None
+        Ready to use, e.g. ``fs.AxialVibrationRig(friction=result.law)``; None if a parameter is not finite.
     params : dict
         Fitted and fixed parameters under the law constructor's keywords (mu [-], tangential_stiffness [N/m],
         ...), plus ``initial_force`` [N] when the initial state was fitted.
@@ -47,6 +47,8 @@ class IdentificationResult:
     n_evaluations, n_failed : int
         Simulations run (scan, search, Jacobian) and how many failed.
     success : bool, message : str
+        Never true with a NaN or inf in ``params``, ``r_squared``, ``rms_residual``, ``model`` or the standard
+        error of an identifiable parameter; the message then names them.
     method : str
     experiment : str
         "kinematic rig" or "axial vibration rig".
@@ -164,36 +166,21 @@ class IdentificationResult:
         return self.summary()
 
 
-def _finite_or_failed(fit: _Fit, ss_res: float, ss_tot: float) -> Tuple[bool, str]:
-    """Every fit result passes here: NaN or inf in the parameters or residual sums is never success, whatever the
-    optimiser said. (An infinite standard error is not a failure: it marks an undetermined parameter, flagged
-    not identifiable.)"""
-    values = {"ss_res": ss_res, "ss_tot": ss_tot, **{f"params[{k!r}]": v for k, v in fit.params.items()}}
-    bad = [name for name, value in values.items() if not math.isfinite(value)]
-    if not bad:
-        return fit.success, fit.message
-    return False, (f"non-finite result ({', '.join(bad[:4])}): the record's magnitudes overflow double precision or "
-                   f"the fit diverged; rescale the data; optimiser: {fit.message}")
-
-
 def _result(fit: _Fit, lawdef: _LawDef, *, method: str, experiment: str, signal_name: str, t: np.ndarray,
             measured: np.ndarray, rig: Any, initial_state: Optional[List[float]],
             started: float) -> IdentificationResult:
     """Package the core's fit with the law built at the solution and the fit quality (rms, R^2)."""
     law_params = {k: fit.params[k] for k in lawdef.physical_names}
-    law = lawdef.build(law_params)
-    residual = fit.residual
-    centred = measured - measured.mean()
-    with np.errstate(over="ignore", invalid="ignore"):
-        ss_res, ss_tot = float(residual @ residual), float(centred @ centred)
-    if ss_tot == 0.0:  # R^2 is undefined, and a constant record shows no dynamics to identify
-        raise InvalidParameterError(f"{signal_name} is constant ({measured[0]!r} throughout): there is nothing to "
-                                    f"identify and R^2 is undefined", signal_name)
-    success, message = _finite_or_failed(fit, ss_res, ss_tot)
+    law = None if _non_finite({"params": law_params}) else lawdef.build(law_params)
+    rms_residual, r_squared = _fit_quality(measured, fit.residual)
+    success, message = _finite_or_failed(fit.success, fit.message, {
+        "params": fit.params, "r_squared": r_squared, "rms_residual": rms_residual, "model": fit.signal,
+        # inf marks a parameter the data do not determine (flagged not identifiable): that is an answer, not NaN
+        "stderr": {k: se for k, se in fit.stderr.items() if fit.identifiable[k] or not math.isinf(se)}})
     return IdentificationResult(
         law_name=lawdef.name, law=law, params=dict(fit.params), stderr=fit.stderr, fitted=fit.fitted,
         covariance=fit.covariance, correlation=fit.correlation, identifiable=fit.identifiable, reasons=fit.reasons,
-        rms_residual=math.sqrt(ss_res / residual.size), r_squared=1.0 - ss_res / ss_tot,
+        rms_residual=rms_residual, r_squared=r_squared,
         n_samples=int(measured.size), n_evaluations=fit.n_evaluations, n_failed=fit.n_failed, success=success,
         message=message, method=method, experiment=experiment, signal_name=signal_name, t=t, measured=measured,
         model=fit.signal, rig=rig, initial_state=initial_state,

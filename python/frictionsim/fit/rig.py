@@ -24,7 +24,7 @@ from .parameters import _canonical, _stiffness_first
 from .result import IdentificationResult, _result
 from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds, _user_values
 from .solver import _fit, _fit_setup
-from .validation import _record, _reject, _weights
+from .validation import _record, _reject, _summable, _varying, _weights
 
 __all__ = ["identify_axial_rig"]
 
@@ -94,6 +94,7 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     started = time.perf_counter()
     lawdef, method, opts = _fit_setup(law, method, solver_options)
     t, measured_all = _record(t, drive_force, "drive_force")
+    _summable("drive_force", measured_all)
     if t[0] != 0.0:  # F_d = k_d (v_d t - x) depends on absolute t: a shifted clock is a different experiment
         _reject(f"t must start at 0, when the rig starts from rest and the drive end at v_d t = 0 (got "
                 f"t[0] = {t[0]!r} s; subtract the logger's start time)", "t")
@@ -154,7 +155,8 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     scan_names = _stiffness_first([name for name in fitted_names if name not in user_guess and
                                    (lawdef.param(name).scan or name == "mu")])
 
-    measured = measured_all[window]
+    after = f" after transient = {transient} s" if transient else ""
+    measured = _varying("drive_force", measured_all[window], where=after)
     w = None if w_all is None else w_all[window]
     force_atol = _force_atol(atol, measured_all)
     duration = float(t[-1] - t[0])

@@ -23,7 +23,8 @@ from scipy.signal import savgol_filter
 from .._core import HystereticFriction
 from ..errors import InvalidParameterError
 from ..signal import _sampling_rate
-from .validation import _time, _vector
+from .quality import _fit_quality, _require_finite
+from .validation import _time, _varying, _vector
 
 __all__ = ["FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
            "fit_hysteretic_friction"]
@@ -141,8 +142,13 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
         return savgol_filter(x, samples, polyorder, deriv=deriv, delta=dt, mode="interp")
 
     twist = th2 - th3  # differentiate the small twist, not th3 (no cancellation of two large angles)
-    w2, al2, twist_rate = smooth(th2, 1), smooth(th2, 2), smooth(twist, 1)
-    torque = -(j2 * al2 + d2 * twist_rate + k2 * smooth(twist, 0))
+    with np.errstate(over="ignore", invalid="ignore"):  # the finiteness rule below names what overflowed
+        w2, al2, twist_rate = smooth(th2, 1), smooth(th2, 2), smooth(twist, 1)
+        torque = -(j2 * al2 + d2 * twist_rate + k2 * smooth(twist, 0))
+    _require_finite(fn, {"disc_speed": w2, "disc_acceleration": al2, "drive_speed": w2 - twist_rate,
+                         "friction_torque": torque},
+                    {"disc_angle": th2, "drive_angle": th3, "disc_inertia": j2, "shaft_stiffness": k2,
+                     "shaft_damping": d2})
     return FrictionTorqueEstimate(_frozen(t.copy()), _frozen(w2), _frozen(w2 - twist_rate), _frozen(al2),
                                   _frozen(torque), float((samples - 1) * dt), samples, polyorder)
 
@@ -220,19 +226,22 @@ def _fit_branch(name: str, w: np.ndarray, al: np.ndarray, torque: np.ndarray) ->
     if w.size < 6:
         _reject(fn, "disc_acceleration", f"leaves the {name} branch {w.size} samples; at least 6 are needed to fit "
                                          f"its 6 coefficients")
-    design = _design(w, al)
+    _varying("friction_torque", torque, where=f" on the {name} branch")
+    # in units of each signal's largest value, so the squares and products below stay in double's range
+    units = [float(np.max(np.abs(x))) for x in (w, al, torque)]
+    design = _design(w / units[0], al / units[1])
     norms = np.linalg.norm(design, axis=0)
     norms[norms == 0.0] = 1.0
-    solution, _, rank, singular = np.linalg.lstsq(design / norms, torque, rcond=None)
+    solution, _, rank, singular = np.linalg.lstsq(design / norms, torque / units[2], rcond=None)
     if rank < 6:
         _reject(fn, "disc_acceleration", f"gives the {name} branch a rank-deficient design (rank {rank} of 6): its "
                                          f"{w.size} samples do not vary enough in w and al to separate the 6 terms")
-    coefficients = solution / norms
-    residual = torque - design @ coefficients
-    ss_res, ss_tot = float(residual @ residual), float(((torque - torque.mean()) ** 2).sum())
-    return BranchFit(name, tuple(float(c) for c in coefficients), 1.0 - ss_res / ss_tot if ss_tot > 0.0 else 1.0,
-                     float(np.sqrt(ss_res / w.size)), int(w.size), float(singular[0] / singular[-1]),
-                     (float(w.min()), float(w.max())), (float(al.min()), float(al.max())))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # the finiteness rule reports these
+        coefficients = solution / norms * units[2] / _design(np.array(units[0]), np.array(units[1]))
+        rmse, r_squared = _fit_quality(torque / units[2], design @ (solution / norms) - torque / units[2])
+    return BranchFit(name, tuple(float(c) for c in coefficients), r_squared, rmse * units[2], int(w.size),
+                     float(singular[0] / singular[-1]), (float(w.min()), float(w.max())),
+                     (float(al.min()), float(al.max())))
 
 
 def _phase_end_torque(torque: np.ndarray, guard: int) -> float:
@@ -317,6 +326,9 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     kept = ~near_corner & (np.abs(al) >= acceleration_threshold)
     branches = [_fit_branch(name, w[m], al[m], torque[m])
                 for name, m in (("accelerating", kept & (al > 0.0)), ("decelerating", kept & (al < 0.0)))]
+    _require_finite(fn, {"stick_slope": breakaway / w_s, **{f"{b.name} {field}": getattr(b, field) for b in branches
+                                                               for field in ("coefficients", "r_squared", "rmse")}},
+                    {"disc_speed": w, "disc_acceleration": al, "friction_torque": torque, "stick_speed": w_s})
     law = HystereticFriction(breakaway / w_s, accelerating=branches[0].coefficients,
                              decelerating=branches[1].coefficients, stick_speed=w_s,
                              reference_normal_force=reference_normal_force, branch_gap=branch_gap)

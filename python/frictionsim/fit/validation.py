@@ -7,6 +7,7 @@ bad record fails at once with the sample at fault instead of deep inside a fit.
 from __future__ import annotations
 
 import math
+import sys
 from typing import Any, NoReturn, Optional, Tuple, Union
 
 import numpy as np
@@ -90,3 +91,26 @@ def _weights(weights: Any, n: int) -> Optional[np.ndarray]:
         _reject("weights must be non-negative with at least one positive (they multiply the residuals, "
                 "1/sigma_i)", "weights")
     return w
+
+
+def _varying(name: str, values: np.ndarray, parameter: Optional[str] = None, where: str = "",
+             why: str = "so there is nothing to fit and R^2 is undefined") -> np.ndarray:
+    """A fitted signal must vary: R^2 = 1 - SS_res / SS_tot is undefined for a constant one, which holds nothing to
+    fit. Constant to within rounding counts (a spread of a few ulps, e.g. a value written out and read back)."""
+    spread, largest = float(np.ptp(values)), float(np.max(np.abs(values)))
+    if spread <= 4.0 * np.finfo(float).eps * largest:
+        _reject(f"{name}{where} must vary: it is constant, {float(values[0])!r} at all {values.size} samples"
+                f"{' (to within rounding)' if spread else ''}, {why}", parameter or name)
+    return values
+
+
+def _summable(name: str, values: np.ndarray) -> np.ndarray:
+    """A fitted signal whose squared residuals sum finitely: |value| below sqrt(max double / (100 n)) (the
+    searches square residuals up to 10x the record's size; 1.3e152 N for 100 samples)."""
+    limit = math.sqrt(sys.float_info.max / (100.0 * values.size))
+    largest = float(np.max(np.abs(values)))
+    if not largest < limit:
+        _reject(f"{name} must stay below {limit:.3g} in magnitude so that the fit's sums of squares over its "
+                f"{values.size} samples are finite in double precision (largest |{name}| = {largest:.3g}); "
+                f"rescale it (other units)", name)
+    return values
