@@ -103,5 +103,5 @@ def test_an_unpicklable_function_fails_before_the_process_pool_is_used():
     thread = threading.Thread(target=run, daemon=True)
     thread.start()
     assert finished.wait(120), "the sweep or the pool's shutdown hung"
-    assert isinstance(errors[0], fs.sweeps.SweepError) and "function must pickle" in str(errors[0])
+    assert isinstance(errors[0], fs.sweeps.SweepError) and "top-level function" in str(errors[0])
     assert errors[1] == [2.0]
