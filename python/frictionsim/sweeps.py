@@ -32,6 +32,7 @@ import concurrent.futures as cf
 import itertools
 import math
 import pickle
+import threading
 import time
 import traceback
 from collections.abc import Mapping, Sequence
@@ -57,11 +58,12 @@ _ERROR_MODES = ("raise", "collect")
 
 
 class SweepError(RuntimeError):
-    """A point of a sweep failed (``errors="raise"``).
+    """A point of a sweep failed (``errors="raise"``), or the sweep could not be sent to a process pool.
 
     ``point`` is the failing point's parameters (dict), ``index`` its position in grid order, ``error`` the
     original exception (also the ``__cause__``), and ``remote_traceback`` its traceback as text when it was
-    raised in another thread, process or machine.
+    raised in another thread, process or machine. ``index`` is -1 and ``point`` {} when the function, ``fixed``
+    or the grid does not pickle for a ProcessPoolExecutor (found before anything is submitted).
     """
 
     def __init__(self, message: str, index: int, point: Dict[str, Any], error: BaseException,
@@ -150,14 +152,24 @@ class _Failure:
     traceback: str
 
 
-def _run_chunk(function: Callable[..., Any], fixed: Dict[str, Any], points: List[Dict[str, Any]]) -> List[Any]:
-    """Run ``function(**fixed, **point)`` for each point; an exception becomes a _Failure (the others still run)."""
+def _run_chunk(function: Callable[..., Any], fixed: Dict[str, Any], points: List[Dict[str, Any]],
+               stop: Optional[threading.Event] = None) -> Optional[List[Any]]:
+    """Run ``function(**fixed, **point)`` for each point; an exception becomes a _Failure (the others still run).
+
+    ``stop`` (an in-process pool's): set, it skips the rest (None: the sweep is ending); an interrupt
+    (KeyboardInterrupt, SystemExit) sets it on its way out, so no other worker starts a point meanwhile."""
     out: List[Any] = []
     for point in points:
+        if stop is not None and stop.is_set():
+            return None
         try:
             out.append(function(**fixed, **point))
         except Exception as error:  # noqa: BLE001 - reported per point by sweep()
             out.append(_Failure(error, traceback.format_exc()))
+        except BaseException:
+            if stop is not None:
+                stop.set()
+            raise
     return out
 
 
@@ -179,8 +191,9 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
     ----------
     function : callable
         Called with keyword arguments only; returns anything, typically a float (e.g. a mean friction force
-        [N]) or a dict of floats. For a ProcessPoolExecutor or a dask cluster it must pickle (a top-level
-        function such as :func:`axial_mean_friction`; :func:`functools.partial` of one also works).
+        [N]) or a dict of floats. For a ProcessPoolExecutor it must pickle (a top-level function such as
+        :func:`axial_mean_friction`; :func:`functools.partial` of one also works), as must ``fixed`` and the
+        grid: checked before anything is submitted. A dask cluster pickles with cloudpickle (lambdas work).
     grid : mapping or sequence of dicts
         ``{"amplitude": [...], "frequency": [...]}``: the full Cartesian product, last name varying fastest
         (C order, so :meth:`SweepResult.as_array` reshapes to ``grid_shape``). Or a sequence of dicts: those
@@ -213,7 +226,11 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
         Empty grid, a grid entry that is not a sequence, a ``fixed`` name repeated in the grid, a bad
         ``errors`` or ``chunksize``; ``.parameter`` names it.
     SweepError
-        A point failed and ``errors="raise"``.
+        A point failed and ``errors="raise"``; or the function, ``fixed`` or the grid does not pickle for a
+        ProcessPoolExecutor (``index`` -1).
+    KeyboardInterrupt, SystemExit
+        Raised in a point (with either ``errors``): propagates unchanged, and on a thread pool no other point
+        starts after it.
     """
     if not callable(function):
         raise TypeError(f"function must be callable, got {type(function).__name__}")
@@ -254,18 +271,23 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
                 store(indices, _run_chunk(function, fixed, [points[i] for i in indices]))
         else:
             _require_picklable(pool, function, fixed, points)
-            futures = {pool.submit(_run_chunk, function, fixed, [points[i] for i in indices]): indices
+            # threads share a stop flag: an interrupt in one point stops the others starting new ones at once
+            stop = threading.Event() if isinstance(pool, cf.ThreadPoolExecutor) else None
+            futures = {pool.submit(_run_chunk, function, fixed, [points[i] for i in indices], stop): indices
                        for indices in chunks}
             try:
                 for future in cf.as_completed(futures):
                     indices = futures[future]
                     try:
-                        outcome = future.result()
+                        outcome = future.result()  # an interrupt raised in a point propagates from here
                     except Exception as error:  # the task itself failed: unpicklable function, broken pool...
                         outcome = [_Failure(error, "".join(traceback.format_exception(
                             type(error), error, error.__traceback__)))] * len(indices)
-                    store(indices, outcome)
+                    if outcome is not None:  # None: skipped after an interrupt, whose future raises it here
+                        store(indices, outcome)
             finally:  # on an error (or Ctrl-C) cancel what has not started; no-op when all are done
+                if stop is not None:
+                    stop.set()
                 for future in futures:
                     future.cancel()
     return SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
@@ -274,17 +296,25 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
 
 def _require_picklable(pool: cf.Executor, function: Callable[..., Any], fixed: Mapping[str, Any],
                        points: List[Dict[str, Any]]) -> None:
-    """Anything but a thread pool sends the function, fixed and the points to other processes: pickle them here
-    first. Failing inside the pool instead left ProcessPoolExecutor's shutdown deadlocked now and then."""
-    if isinstance(pool, cf.ThreadPoolExecutor):
+    """A process pool pickles the function, fixed and the points to send them to its workers: pickle them here
+    first, before anything is submitted. Failing inside the pool instead left its shutdown deadlocked now and then.
+    Other executors serialise as they like (dask uses cloudpickle, which takes lambdas; a thread pool
+    needs nothing), so only a ProcessPoolExecutor is checked."""
+    if not isinstance(pool, cf.ProcessPoolExecutor):
         return
     for what, value in (("function", function), ("fixed", fixed), ("grid", points)):
         try:
             pickle.dumps(value)
         except Exception as error:
-            raise SweepError(f"sweep: the {what} must pickle to run on {type(pool).__name__} ({type(error).__name__}:"
-                             f" {error}); use a top-level function (not a lambda or a local function) or a "
-                             f"ThreadPoolExecutor", -1, {}, error, "") from error
+            label = f"function {_qualified_name(function)!r}" if what == "function" else f"the {what}"
+            raise SweepError(f"sweep: {label} must pickle to run on a {type(pool).__name__} "
+                             f"({type(error).__name__}: {error}); use a top-level function (not a lambda or a local "
+                             f"function) and picklable values, or a ThreadPoolExecutor", -1, {}, error) from error
+
+
+def _qualified_name(function: Callable[..., Any]) -> str:
+    inner = getattr(function, "func", function)  # functools.partial
+    return f"{getattr(inner, '__module__', '?')}.{getattr(inner, '__qualname__', _name(function))}"
 
 
 def _name(function: Callable[..., Any]) -> str:

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 import multiprocessing
+import re
+import signal
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
@@ -196,6 +199,88 @@ def test_errors_collect_keeps_the_other_points(serial):
     frame = result.to_pandas()
     assert frame["error"].tolist()[0] is None and frame["error"][1].startswith("InvalidParameterError: ")
     assert math.isnan(frame["value"][1]) and frame["value"][2] == serial.values[4]
+
+
+# ----------------------------------------------------------------------- what pickles, interrupts (issue 11, item 13)
+@pytest.fixture
+def deadline():
+    """SIGALRM after 60 s: a sweep or a pool shutdown that deadlocks fails the test instead of hanging CI."""
+    def hung(signum, frame):
+        raise TimeoutError("the sweep or the executor's shutdown hung for 60 s")
+
+    previous = signal.signal(signal.SIGALRM, hung)
+    signal.alarm(60)
+    yield
+    signal.alarm(0)
+    signal.signal(signal.SIGALRM, previous)
+
+
+class _CountingPool(ProcessPoolExecutor):
+    """A process pool that counts the tasks handed to it."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.submitted = 0
+
+    def submit(self, *args, **kwargs):
+        self.submitted += 1
+        return super().submit(*args, **kwargs)
+
+
+def _closure():
+    factor = 2.0
+    return lambda x, scale=1.0: factor * scale * x
+
+
+@pytest.mark.parametrize("function, name", [(lambda x: x, "<lambda>"), (_closure(), "_closure.<locals>.<lambda>"),
+                                            (functools.partial(_closure(), scale=3.0), "_closure.<locals>.<lambda>")])
+def test_an_unpicklable_function_fails_before_the_process_pool_is_used(deadline, function, name):
+    with _CountingPool(1, mp_context=SPAWN) as pool:
+        with pytest.raises(SweepError, match=f"function '.*{re.escape(name)}' must pickle") as caught:
+            fs.sweep(function, {"x": [1.0, 2.0]}, executor=pool, progress=False)
+        assert pool.submitted == 0  # before: submitted, failed in the pool's feeder, and shutdown could deadlock
+        assert caught.value.index == -1 and caught.value.point == {}
+        assert fs.sweep(_moments, {"v": [3.0]}, executor=pool, progress=False).values == [{"square": 9.0, "v": 3.0}]
+
+
+@pytest.mark.parametrize("fixed, grid, what", [({"w": threading.Lock()}, {"v": [1.0]}, "fixed"),
+                                               ({}, [{"v": 1.0}, {"v": threading.Lock()}], "grid")])
+def test_unpicklable_fixed_or_grid_values_fail_before_the_process_pool_is_used(deadline, fixed, grid, what):
+    with _CountingPool(1, mp_context=SPAWN) as pool:
+        with pytest.raises(SweepError, match=f"the {what} must pickle"):
+            fs.sweep(_moments, grid, fixed=fixed, executor=pool, progress=False)
+        assert pool.submitted == 0
+
+
+def test_a_lambda_runs_on_dask_which_pickles_with_cloudpickle(dask_client):
+    # only a ProcessPoolExecutor is known to use pickle: any other executor serialises as it likes
+    assert fs.sweep(lambda v: 2.0 * v, {"v": [1.0, 2.0]}, executor=dask_client, progress=False).values == [2.0, 4.0]
+
+
+@pytest.mark.parametrize("interrupt", [KeyboardInterrupt, SystemExit])
+@pytest.mark.parametrize("errors", ["raise", "collect"])
+@pytest.mark.parametrize("chunksize, at", [(1, 0), (5, 2)])
+def test_an_interrupt_in_a_point_propagates_and_no_further_point_starts(interrupt, errors, chunksize, at):
+    for _ in range(5):  # before the fix, a run now and then got away with it
+        started, returned = [], threading.Event()
+
+        def point(i):
+            started.append(i)
+            if i == at:
+                raise interrupt()
+            if i > at:  # a later point holds its worker until the sweep has returned: none can start meanwhile
+                returned.wait(10.0)
+            return i
+
+        with ThreadPoolExecutor(2) as pool:
+            try:
+                with pytest.raises(interrupt):
+                    fs.sweep(point, {"i": range(40)}, executor=pool, progress=False, errors=errors,
+                             chunksize=chunksize)
+            finally:
+                returned.set()
+        # before: the interrupted worker went on to the next point in the queue before the caller could cancel it
+        assert set(range(at + 1)) <= set(started) <= set(range(at + 1)) | {chunksize}  # + the other worker's first
 
 
 # ------------------------------------------------------------------------------------------------ validation
