@@ -42,6 +42,13 @@ def _reject(owner: str, parameter: str, rule: str, value: object) -> None:
     raise InvalidParameterError(f"{owner}: {parameter} must be {rule} (got {value})", parameter)
 
 
+def _finite(owner: str, x: np.ndarray, **results) -> None:
+    """NaN or inf never leaves: x was finite, so its magnitudes overflowed (the fits' rule, named x)."""
+    from .fit.quality import _require_finite  # deferred: the fit package imports this module
+
+    _require_finite(owner, results, {"x": x})
+
+
 def _samples(owner: str, t, x, *, min_samples: int = 2) -> Tuple[np.ndarray, np.ndarray]:
     """Validate a record (t, x): 1-D, same length, finite, t strictly increasing."""
     t = np.asarray(t, dtype=float)
@@ -86,12 +93,16 @@ def _sampling_rate(owner: str, t: np.ndarray, rtol: float) -> float:
 
 def _peak_frequency(x: np.ndarray, fs: float, *, fmin: Optional[float], fmax: Optional[float],
                     zero_pad: int, detrend: str) -> float:
-    """Sub-bin frequency [Hz] of the largest spectral peak of x in [fmin, fmax]; NaN if x has no content.
+    """Sub-bin frequency [Hz] of the largest spectral peak of x in [fmin, fmax]; NaN if x has no content above
+    rounding (an oscillation below ~16 eps of x's size: a constant record's detrended rounding errors).
 
     Hann window, zero padding to >= zero_pad * len(x) points (a finer grid for the search), then a parabola
     through the log-magnitudes of the peak bin and its neighbours: the Hann main lobe is close to a Gaussian,
     whose log is exactly a parabola, so the vertex lands well inside a bin.
     """
+    size = float(np.max(np.abs(x)))
+    x = x / size if size > 0.0 else x  # the frequency does not depend on the scale; the FFT overflowed at 1e308
+    rounding = 4.0 * np.finfo(float).eps * x.size  # relative to x's size: a sine of amplitude A peaks at ~A n/4
     if detrend != "none":
         x = scipy.signal.detrend(x, type=detrend)
     n = x.size
@@ -104,7 +115,7 @@ def _peak_frequency(x: np.ndarray, fs: float, *, fmin: Optional[float], fmax: Op
         band &= freqs >= fmin
     if fmax is not None:
         band &= freqs <= fmax
-    if not band.any() or not np.any(mag[band] > 0.0):
+    if not band.any() or not np.any(mag[band] > rounding):
         return math.nan
     k = int(np.flatnonzero(band)[np.argmax(mag[band])])
     if k == 0 or k == mag.size - 1 or np.any(mag[k - 1:k + 2] <= 0.0):
@@ -203,18 +214,19 @@ def emd(t, x, *, max_imfs: Optional[int] = None, sd_threshold: float = 0.3, spli
     unknown = sorted(k for k in pyemd_options if not hasattr(decomposer, k))
     if unknown:
         _reject(owner, unknown[0], "an option of PyEMD.EMD", pyemd_options[unknown[0]])
-    # Sampling is uniform, so PyEMD's index-based extrema detection equals a time-based one.
-    decomposer.emd(x, t, max_imf=-1 if max_imfs is None else int(max_imfs))
-    imfs, _ = decomposer.get_imfs_and_residue()
-    imfs = np.atleast_2d(np.asarray(imfs, dtype=float)).reshape(-1, x.size)
-    residue = x - imfs.sum(axis=0)  # defined this way so that sum(c_i) + r_n = x up to rounding
-
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is named by _finite below
+        # Sampling is uniform, so PyEMD's index-based extrema detection equals a time-based one.
+        decomposer.emd(x, t, max_imf=-1 if max_imfs is None else int(max_imfs))
+        imfs, _ = decomposer.get_imfs_and_residue()
+        imfs = np.atleast_2d(np.asarray(imfs, dtype=float)).reshape(-1, x.size)
+        residue = x - imfs.sum(axis=0)  # defined this way so that sum(c_i) + r_n = x up to rounding
+        energies = np.sum(imfs ** 2, axis=1)
+        residue_energy = float(np.sum(residue ** 2))
+        total = energies.sum() + residue_energy
+        shares = energies / total if total > 0.0 else np.zeros_like(energies)
+    _finite(owner, x, imfs=imfs, residue=residue, energy_share=shares)
     freqs = np.array([_peak_frequency(c, fs, fmin=None, fmax=None, zero_pad=8, detrend="constant")
                       for c in imfs])
-    energies = np.sum(imfs ** 2, axis=1)
-    residue_energy = float(np.sum(residue ** 2))
-    total = energies.sum() + residue_energy
-    shares = energies / total if total > 0.0 else np.zeros_like(energies)
     return Decomposition(t=t, imfs=imfs, residue=residue, frequencies=freqs, energy_share=shares,
                          residue_energy_share=residue_energy / total if total > 0.0 else 0.0)
 
@@ -246,15 +258,18 @@ def spectrum(t, x, *, method: str = "periodogram", scaling: str = "amplitude", w
     if scaling not in ("amplitude", "psd"):
         _reject(owner, "scaling", '"amplitude" or "psd"', repr(scaling))
     scipy_scaling = "spectrum" if scaling == "amplitude" else "density"
-    if method == "periodogram":
-        f, p = scipy.signal.periodogram(x, fs, window=window, detrend=detrend, scaling=scipy_scaling)
-    elif method == "welch":
-        if nperseg is not None and not (isinstance(nperseg, (int, np.integer)) and 4 <= nperseg <= x.size):
-            _reject(owner, "nperseg", f"None or an integer in [4, {x.size}]", nperseg)
-        f, p = scipy.signal.welch(x, fs, window=window, detrend=detrend, scaling=scipy_scaling,
-                                  nperseg=nperseg if nperseg is not None else min(256, x.size))
-    else:
+    if method == "welch" and nperseg is not None and not (isinstance(nperseg, (int, np.integer))
+                                                          and 4 <= nperseg <= x.size):
+        _reject(owner, "nperseg", f"None or an integer in [4, {x.size}]", nperseg)
+    if method not in ("periodogram", "welch"):
         _reject(owner, "method", '"periodogram" or "welch"', repr(method))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is named by _finite below
+        if method == "periodogram":
+            f, p = scipy.signal.periodogram(x, fs, window=window, detrend=detrend, scaling=scipy_scaling)
+        else:
+            f, p = scipy.signal.welch(x, fs, window=window, detrend=detrend, scaling=scipy_scaling,
+                                      nperseg=nperseg if nperseg is not None else min(256, x.size))
+    _finite(owner, x, spectrum=p)
     if scaling == "psd":
         return f, p
     # SciPy's one-sided power spectrum holds A^2/2 for a sine (its negative-frequency half folded in) but the
@@ -293,7 +308,7 @@ def dominant_frequency(t, x, *, fmin: Optional[float] = None, fmax: Optional[flo
         _reject(owner, "fmax", f"> fmin ({fmin})", fmax)
     f = _peak_frequency(x, fs, fmin=fmin, fmax=fmax, zero_pad=int(zero_pad), detrend=detrend)
     if math.isnan(f):
-        _reject(owner, "x", "oscillating within [fmin, fmax] (its spectrum there is zero)",
+        _reject(owner, "x", "oscillating within [fmin, fmax] (its spectrum there is zero to rounding)",
                 f"fmin={fmin}, fmax={fmax}")
     return f
 
@@ -340,8 +355,10 @@ def cycle_averages(t, x, period: float, *, transient: float = 0.0,
     owner = "cycle_averages"
     t, x = _samples(owner, t, x)
     bounds = _cycle_bounds(owner, t, float(period), float(transient), cycles)
-    integral = _running_integral(t, x, bounds)
-    return 0.5 * (bounds[1:] + bounds[:-1]), np.diff(integral) / np.diff(bounds)
+    with np.errstate(over="ignore", invalid="ignore"):
+        means = np.diff(_running_integral(t, x, bounds)) / np.diff(bounds)
+    _finite(owner, x, means=means)
+    return 0.5 * (bounds[1:] + bounds[:-1]), means
 
 
 def cycle_averaged(t, x, period: float, transient: float = 0.0, cycles: Optional[int] = None) -> float:
@@ -356,4 +373,6 @@ def cycle_averaged(t, x, period: float, transient: float = 0.0, cycles: Optional
     owner = "cycle_averaged"
     t, x = _samples(owner, t, x)
     bounds = _cycle_bounds(owner, t, float(period), float(transient), cycles)
-    return _core.mean_over_window(t, x, bounds[0], bounds[-1])
+    mean = _core.mean_over_window(t, x, bounds[0], bounds[-1])
+    _finite(owner, x, mean=mean)
+    return mean

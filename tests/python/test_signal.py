@@ -178,3 +178,35 @@ def test_bad_input_names_the_parameter(call, parameter):
         call(t, x)
     assert f" {parameter} must be" in _message(excinfo)
     assert excinfo.value.parameter == parameter  # frictionsim.InvalidParameterError, a ValueError
+
+
+# ------------------------------------------------------------------------------ NaN / inf never leave (issue 11)
+T_UNIFORM = np.linspace(0.0, 1.0, 1001)
+
+
+@pytest.mark.parametrize("level", [0.3, -7.1])
+def test_a_constant_record_has_no_dominant_frequency(level):
+    # 0.3: the detrended record is rounding noise, whose peak gave 0.00035 Hz before (3.0 happens to detrend to 0)
+    with pytest.raises(ValueError, match="oscillating") as excinfo:
+        signal.dominant_frequency(T_UNIFORM, np.full_like(T_UNIFORM, level))
+    assert excinfo.value.parameter == "x"
+
+
+@pytest.mark.parametrize("scale", [1e-300, 1.0, 1e307])
+def test_dominant_frequency_does_not_depend_on_the_scale(scale):
+    x = scale * np.sin(2 * np.pi * 17.0 * T_UNIFORM)  # 1e307: the FFT overflowed and the record looked empty
+    assert signal.dominant_frequency(T_UNIFORM, x) == pytest.approx(17.0, abs=1e-3)
+
+
+@pytest.mark.parametrize("call, field", [
+    (lambda t, x: signal.spectrum(t, x), "spectrum"),
+    (lambda t, x: signal.spectrum(t, x, method="welch", scaling="psd"), "spectrum"),
+    (lambda t, x: signal.cycle_averages(t, x, 0.1), "means"),
+    (lambda t, x: signal.cycle_averaged(t, x, 0.1), "mean"),
+    (lambda t, x: signal.emd(t, x, max_imfs=2), "energy_share"),
+])
+def test_a_result_that_overflows_names_x_instead_of_returning_inf_or_nan(call, field):
+    x = 1e308 * np.sin(2 * np.pi * 17.0 * T_UNIFORM)  # finite samples; their sums and squares are not
+    with pytest.raises(ValueError, match=f"finite in double precision.*{field}") as excinfo:
+        call(T_UNIFORM, x)
+    assert excinfo.value.parameter == "x"

@@ -65,6 +65,6 @@ def _require_finite(owner: str, fields: Mapping[str, Any], inputs: Mapping[str, 
     sizes = {name: float(np.max(np.abs(np.asarray(value, dtype=float)))) for name, value in inputs.items()}
     culprit = max(sizes, key=lambda name: abs(math.log10(sizes[name])) if sizes[name] > 0.0 else 0.0)
     raise InvalidParameterError(
-        f"{owner}: {culprit} must have magnitudes that keep the fit finite in double precision (largest "
+        f"{owner}: {culprit} must have magnitudes that keep the result finite in double precision (largest "
         f"|{culprit}| = {sizes[culprit]:.3g}; not finite: {', '.join(bad[:6])}); rescale the data (other units)",
         culprit)
