@@ -342,9 +342,9 @@ fitted over v_a/v_d of about 160-2564 (Table 4); outside that it extrapolates.
 Parameters
 ----------
 eta : float
-    eta' [-], > 0.
+    eta' [-], in (0, 10] (Table 5: 0.12-1.07).
 exponent : float
-    c [-] (negative: more vibration, less friction).
+    c [-], in [-2, 2] (negative: more vibration, less friction; Table 5: -0.09 to -0.37).
 )doc")
         .def(py::init([](double eta, double exponent) {
                  return PowerLawCoefficient(PowerLawCoefficient::Params{eta, exponent});
