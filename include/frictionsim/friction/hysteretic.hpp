@@ -89,10 +89,8 @@ public:
             const double level = (accelerating ? p.accelerating : p.decelerating).level(p.stick_speed);
             if (!(level > 0.0))
                 detail::reject(name, accelerating ? "accelerating" : "decelerating",
-                               accelerating ? "a branch whose level p00 + p10 w_s + p20 w_s^2 at the stick speed is "
-                                              "positive (friction opposes the motion)"
-                                            : "a branch whose level n00 + n10 w_s + n20 w_s^2 at the stick speed is "
-                                              "positive (friction opposes the motion)",
+                               "a branch whose level c00 + c10 w_s + c20 w_s^2 at the stick speed is positive "
+                               "(friction opposes the motion)",
                                level);
         }
     }

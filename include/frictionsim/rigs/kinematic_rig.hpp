@@ -141,7 +141,7 @@ private:
     static bool is_slip(int mode) { return mode == slip_positive || mode == slip_negative; }
     /// The law's branch in `mode`: the slip direction, the one a stick holds, +1 for a stick from the start (where
     /// v_r = 0 the branch of a state law changes nothing).
-    static int branch_of(int mode) { return mode > 0 ? 1 : mode < 0 ? -1 : 1; }
+    static int branch_of(int mode) { return mode < 0 ? -1 : 1; }
 
     /// Slip s: s v_r, falling through zero at a reversal or standstill. Stick: DBL_MIN - |v_r|, falling as
     /// soon as v_r leaves zero and never zero while it stays there.
