@@ -33,8 +33,8 @@
 #include <frictionsim/friction/hysteretic.hpp>
 #include <frictionsim/friction/lugre.hpp>
 #include <frictionsim/friction/stribeck.hpp>
-#include <frictionsim/rigs/contact_switching.hpp>
-#include <frictionsim/rigs/disc_contact.hpp>
+#include <frictionsim/contact/switching.hpp>
+#include <frictionsim/contact/disc_contact.hpp>
 #include <frictionsim/rigs/reference_setups.hpp>
 
 using namespace frictionsim;

@@ -1,4 +1,4 @@
-// Coulomb friction, and the stick/slip switching of rigs/contact_switching.hpp, against analytic references: the friction-vector mean force of a body sliding on a
+// Coulomb friction, and the stick/slip switching of contact/switching.hpp, against analytic references: the friction-vector mean force of a body sliding on a
 // vibrating surface, and the stick-slip cycle of a spring-pulled block with static > kinetic friction.
 #include <cmath>
 #include <vector>

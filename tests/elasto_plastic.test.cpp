@@ -14,6 +14,7 @@ namespace {
 /// Canudas de Wit 1995's LuGre values (Fc = 1 N, Fs = 1.5 N at N = 1 N, sigma0 = 1e5 N/m): z_max >= 1e-5 m.
 ElastoPlastic::Params reference_params(double breakaway_fraction = 0.5) {
     ElastoPlastic::Params p;
+    static_cast<LuGre::Params&>(p) = canudas_de_wit_1995_lugre();
     p.breakaway_fraction = breakaway_fraction;
     return p;
 }
@@ -60,7 +61,7 @@ TEST_CASE("elasto-plastic presliding is elastic: z follows the imposed displacem
     const Result ep = simulate(KinematicRig<ElastoPlastic, HarmonicSlidingVelocity>(ElastoPlastic(reference_params()),
                                                                                    v, ConstantSignal(1.0)),
                                0.5, o);
-    LuGre::Params lp;  // the same bristles without the elastic regime
+    LuGre::Params lp = canudas_de_wit_1995_lugre();  // the same bristles without the elastic regime
     const Result lugre =
         simulate(KinematicRig<LuGre, HarmonicSlidingVelocity>(LuGre(lp), v, ConstantSignal(1.0)), 0.5, o);
     const std::size_t z = ep.column("bristle_deflection");
@@ -99,7 +100,7 @@ TEST_CASE("elasto-plastic stick-slip on Canudas de Wit's block: the LuGre cycle,
     o.atol = 1e-12;
     for (int i = 0; i <= 30000; ++i) o.output_times.push_back(i * 1e-3);
     const Result ep = simulate(AxialRig<ElastoPlastic>(p, ElastoPlastic(reference_params())), 30.0, o);
-    const Result lugre = simulate(AxialRig<LuGre>(p, LuGre(LuGre::Params{})), 30.0, o);
+    const Result lugre = simulate(AxialRig<LuGre>(p, LuGre(canudas_de_wit_1995_lugre())), 30.0, o);
     // slip starts (v > 1 cm/s after v < 1 mm/s) and the creep speed during the first loading, t in (1, 6) s
     const auto slip_starts = [](const Result& r) {
         std::vector<double> starts;

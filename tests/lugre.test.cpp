@@ -11,7 +11,7 @@
 using namespace frictionsim;
 
 TEST_CASE("LuGre steady sliding force equals g(v) + sigma2 v", "[lugre][kinematic_rig]") {
-    const LuGre law(LuGre::Params{});  // Canudas de Wit 1995 values: Fc = 1 N, Fs = 1.5 N at N = 1 N
+    const LuGre law(canudas_de_wit_1995_lugre());  // Canudas de Wit 1995 values: Fc = 1 N, Fs = 1.5 N at N = 1 N
     for (double v : {-0.1, -1e-3, 2e-4, 1e-3, 5e-3, 0.1}) {
         KinematicRig rig(law, ConstantSignal(v), ConstantSignal(1.0));
         SolverOptions o;
@@ -31,7 +31,7 @@ TEST_CASE("LuGre stick-slip example of Canudas de Wit et al. 1995", "[lugre][axi
     // m = 1 kg pulled through k = 2 N/m at 0.1 m/s; sigma0 = 1e5 N/m, sigma1 = sqrt(1e5) N s/m,
     // sigma2 = 0.4 N s/m, Fc = 1 N, Fs = 1.5 N, vs = 1 mm/s (their Fig. 6).
     const AxialRigParams p = canudas_de_wit_1995_params();
-    AxialRig<LuGre> rig(p, LuGre(LuGre::Params{}));
+    AxialRig<LuGre> rig(p, LuGre(canudas_de_wit_1995_lugre()));
     SolverOptions o;
     o.method = GENERATE(Method::cvode_bdf, Method::dormand_prince);
     o.rtol = 1e-8;
@@ -79,7 +79,7 @@ TEST_CASE("LuGre with stiff bristles approaches Stribeck friction with exact sti
     sp.stribeck_velocity = 1e-3;
     sp.viscous_coefficient = 0.4;
     AxialRig<Stribeck> exact(p, Stribeck(sp));
-    LuGre::Params lp;
+    LuGre::Params lp = canudas_de_wit_1995_lugre();
     lp.bristle_stiffness = 1e7;
     lp.bristle_damping = 2 * std::sqrt(1e7);  // critically damped bristles
     AxialRig<LuGre> bristles(p, LuGre(lp));

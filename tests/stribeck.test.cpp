@@ -1,4 +1,4 @@
-// Stribeck friction (and the Karnopp band of rigs/contact_switching.hpp, set-ups of reference_setups.hpp): the curve itself, exact stick on a rig, and the Karnopp band converging to exact stick.
+// Stribeck friction (and the Karnopp band of contact/switching.hpp, set-ups of reference_setups.hpp): the curve itself, exact stick on a rig, and the Karnopp band converging to exact stick.
 #include <cmath>
 #include <vector>
 

@@ -1,5 +1,5 @@
 // The torsional drill-string rig of paper 001 (eqs 1-5, rigs/torsional_rig.hpp) with the disc contact of
-// rigs/disc_contact.hpp: energy balances through stick-slip, steady sliding under PI control, the disc-on-shaft
+// contact/disc_contact.hpp: energy balances through stick-slip, steady sliding under PI control, the disc-on-shaft
 // frequency, the motor's break-away from rest, the branch gap of the hysteretic law (eq 6), mirror symmetry,
 // normal-force scaling, bad input and the mode encoding.
 #include <cmath>

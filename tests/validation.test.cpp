@@ -3,7 +3,7 @@
 // parameter's name and whose what() contains it; valid boundary values are accepted. Also: a run that goes past
 // its sampled data or whose normal force turns non-positive fails cleanly.
 //
-// Table-driven: each Rule names a parameter, lists the values it must reject, and builds the object with one
+// Table-driven: each ParameterCheck names a parameter, lists the values it must reject, and builds the object with one
 // such value (every other parameter valid).
 #include <array>
 #include <cmath>
@@ -62,14 +62,14 @@ const auto expect_invalid = [](const std::string& name, auto&& call) {
     FAIL_CHECK("expected InvalidParameter naming '" << name << "', nothing was thrown");
 };
 
-struct Rule {
+struct ParameterCheck {
     std::string name;
     std::vector<double> bad;
     std::function<void(double)> build;  ///< builds the object with this parameter set to the value
 };
 
-void check_rules(const std::vector<Rule>& rules) {
-    for (const Rule& r : rules) {
+void check_rules(const std::vector<ParameterCheck>& rules) {
+    for (const ParameterCheck& r : rules) {
         for (const double v : r.bad) {
             INFO(r.name << " = " << v);
             expect_invalid(r.name, [&] { r.build(v); });
@@ -157,7 +157,7 @@ TEST_CASE("Dahl rejects non-physical parameters, naming them; exponent in [0.5, 
 namespace {
 /// The rules LuGre and ElastoPlastic share: their six bristle parameters (LuGre::Params, a base of the other's).
 template <class Law>
-std::vector<Rule> bristle_rules(const typename Law::Params& ok) {
+std::vector<ParameterCheck> bristle_rules(const typename Law::Params& ok) {
     const auto make = [](const typename Law::Params& p) { (void)Law(p); };
     using P = LuGre::Params;
     return {
@@ -183,7 +183,7 @@ TEST_CASE("LuGre rejects every non-physical parameter, naming it", "[validation]
 
 TEST_CASE("ElastoPlastic rejects every non-physical parameter, naming it", "[validation][elasto_plastic]") {
     const ElastoPlastic::Params ok{};
-    std::vector<Rule> rules = bristle_rules<ElastoPlastic>(ok);
+    std::vector<ParameterCheck> rules = bristle_rules<ElastoPlastic>(ok);
     rules.push_back({"breakaway_fraction", {-0.1, 1.0, 1.5, kNaN, kInf, -kInf},
                      with(ok, &ElastoPlastic::Params::breakaway_fraction, [](const ElastoPlastic::Params& p) {
                          (void)ElastoPlastic(p);

@@ -19,7 +19,7 @@
  *                 (falling) and CVODE is restarted there with s := -s, the treatment frictionsim gives it.
  *
  *   spring_block  Coulomb stick-slip, as frictionsim's AxialRig<Coulomb>(spring_block_params(0.5, 200.0,
- *                 0.05), Coulomb(0.4, 0.6)) (rigs/reference_setups.hpp, rigs/contact_switching.hpp): a block
+ *                 0.05), Coulomb(0.4, 0.6)) (rigs/reference_setups.hpp, contact/switching.hpp): a block
  *                 of m = 0.5 kg pulled through a spring k = 200 N/m whose end moves at v_p = 0.05 m/s,
  *                 N = m g, mu_k = 0.4, mu_s = 0.6. States y = (x, v, I), spring force F_s = k (v_p t - x):
  *                     slip (mode +1 / -1): F = mu_k N mode        root: mode v falling to 0 -> stick if

@@ -15,6 +15,7 @@
 #include "friction/stribeck.hpp"
 #include "rigs/axial_rig.hpp"
 #include "rigs/kinematic_rig.hpp"
+#include "papers.hpp"
 #include "rigs/reference_setups.hpp"
 #include "rigs/signals.hpp"
 #include "rigs/torsional_rig.hpp"
@@ -22,4 +23,4 @@
 #include "solve/hybrid_loop.hpp"
 #include "solve/options.hpp"
 #include "solve/result.hpp"
-#include "solve/simulate.hpp"
+#include "solve/simulate_with.hpp"

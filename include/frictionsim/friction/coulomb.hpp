@@ -2,11 +2,12 @@
 // stick while the force needed to keep v_r = 0 stays within mu_s N (Leine's switch model).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
 
-#include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "law.hpp"
 
 namespace frictionsim {
@@ -15,17 +16,30 @@ class Coulomb {
 public:
     static constexpr const char* name = "Coulomb";
     static constexpr bool has_stick = true;
+    static constexpr const char* key = "coulomb";
     static constexpr std::size_t state_count = 0;
 
+    struct Params {
+        double friction_coefficient = 0.3;                                      ///< mu, kinetic
+        double static_coefficient = std::numeric_limits<double>::quiet_NaN();  ///< mu_s >= mu; NaN: equal to mu
+    };
+    static constexpr std::array<Field<Params>, 2> fields{{
+        {"friction_coefficient", "mu", "-", Rule::positive(), &Params::friction_coefficient,
+         "Kinetic (sliding) friction coefficient.", "mu", true},
+        {"static_coefficient", "mu_s", "-", Rule::at_least_field("friction_coefficient").or_unset(),
+         &Params::static_coefficient, "Static (breakaway) coefficient; unset (None, NaN): equal to mu.", "mu_static"},
+    }};
+
+    explicit Coulomb(const Params& p) : mu_(p.friction_coefficient), mu_static_(p.static_coefficient) {
+        validate_fields(name, p, fields);
+        if (std::isnan(mu_static_)) mu_static_ = mu_;
+    }
     /// mu (kinetic) and mu_s (static, >= mu; NaN means equal to mu). Dimensionless.
     explicit Coulomb(double friction_coefficient,
                      double static_coefficient = std::numeric_limits<double>::quiet_NaN())
-        : mu_(detail::require_positive(name, "friction_coefficient", friction_coefficient)),
-          mu_static_(std::isnan(static_coefficient)
-                         ? mu_
-                         : detail::require_at_least(name, "static_coefficient", static_coefficient, mu_,
-                                                    ">= friction_coefficient and finite")) {}
+        : Coulomb(Params{friction_coefficient, static_coefficient}) {}
 
+    Params params() const { return Params{mu_, mu_static_}; }
     double friction_coefficient() const { return mu_; }
     double static_coefficient() const { return mu_static_; }
 

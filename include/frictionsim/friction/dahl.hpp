@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "law.hpp"
 
 namespace frictionsim {
@@ -16,6 +16,7 @@ namespace frictionsim {
 class Dahl {
 public:
     static constexpr const char* name = "Dahl";
+    static constexpr const char* key = "dahl";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = true;
     static constexpr std::size_t state_count = 1;
@@ -27,18 +28,31 @@ public:
     /// Above the maximum, |b|^alpha after a reversal (b up to 2) spans more than 15 decades.
     static constexpr double min_exponent = 0.5, max_exponent = 50.0;
 
+    struct Params {
+        double friction_coefficient = 0.41;  ///< mu: saturation force mu N
+        double tangential_stiffness = 4e4;   ///< k_t, N/m
+        double exponent = 1.0;               ///< alpha (1 in paper 000)
+    };
+    static constexpr std::array<Field<Params>, 3> fields{{
+        {"friction_coefficient", "mu", "-", Rule::positive(), &Params::friction_coefficient,
+         "Friction coefficient (saturation force mu F_N).", "mu", true},
+        {"tangential_stiffness", "k_t", "N/m", Rule::positive(), &Params::tangential_stiffness,
+         "Tangential contact stiffness (paper 000 fits 30-40 N/mm for shale on 45 steel, Fig. 10).", nullptr, true},
+        {"exponent", "alpha", "-",
+         Rule::interval(min_exponent, max_exponent)
+             .because("below 0.5 the saturation is reached with an unbounded slope that no step-size control "
+                      "resolves in reasonable time: 0.2 took 2.1 million steps for 0.5 s"),
+         &Params::exponent, "Shape exponent (1 in the paper).", nullptr},
+    }};
+
+    explicit Dahl(const Params& p) : mu_(p.friction_coefficient), k_t_(p.tangential_stiffness), alpha_(p.exponent) {
+        validate_fields(name, p, fields);
+    }
     /// mu (dimensionless), k_t (N/m), alpha in [0.5, 50] (dimensionless).
     Dahl(double friction_coefficient, double tangential_stiffness, double exponent = 1.0)
-        : mu_(detail::require_positive(name, "friction_coefficient", friction_coefficient)),
-          k_t_(detail::require_positive(name, "tangential_stiffness", tangential_stiffness)),
-          alpha_(exponent) {
-        if (!(exponent >= min_exponent && exponent <= max_exponent))
-            detail::reject(name, "exponent",
-                           "in [0.5, 50] (below 0.5 the saturation is reached with an unbounded slope that no "
-                           "step-size control resolves in reasonable time: 0.2 took 2.1 million steps for 0.5 s)",
-                           exponent);
-    }
+        : Dahl(Params{friction_coefficient, tangential_stiffness, exponent}) {}
 
+    Params params() const { return Params{mu_, k_t_, alpha_}; }
     double friction_coefficient() const { return mu_; }
     double tangential_stiffness() const { return k_t_; }
     double exponent() const { return alpha_; }

@@ -19,7 +19,7 @@
 #include <cstddef>
 
 #include "../detail/constants.hpp"
-#include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "law.hpp"
 #include "lugre.hpp"
 
@@ -28,6 +28,7 @@ namespace frictionsim {
 class ElastoPlastic {
 public:
     static constexpr const char* name = "ElastoPlastic";
+    static constexpr const char* key = "elasto_plastic";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = true;
     static constexpr bool stiff = true;  ///< bristle modes as LuGre's
@@ -41,11 +42,15 @@ public:
         double breakaway_fraction = 0.5;
     };
 
-    explicit ElastoPlastic(const Params& p) : p_(p) {
-        detail::validate_bristles(name, p);
-        if (!(p.breakaway_fraction >= 0.0 && p.breakaway_fraction < 1.0))
-            detail::reject(name, "breakaway_fraction", "in [0, 1)", p.breakaway_fraction);
-    }
+    static constexpr auto fields = extend_fields<Params>(
+        LuGre::fields, std::array<Field<Params>, 1>{{
+                           {"breakaway_fraction", "beta", "-", Rule::interval(0.0, 1.0, false, true),
+                            &Params::breakaway_fraction,
+                            "z_ba / z_max: 0 starts the plastic ramp at z = 0 (LuGre-like when loading; unloading "
+                            "stays elastic)."},
+                       }});
+
+    explicit ElastoPlastic(const Params& p) : p_(p) { validate_fields(name, p, fields); }
 
     const Params& params() const { return p_; }
 

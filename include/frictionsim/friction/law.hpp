@@ -11,13 +11,20 @@
 //      static constexpr bool kink_at_zero_velocity;   // the rig locates v_r = 0 as an event; branch = sign(v_r)
 //      static constexpr std::array<const char*, state_count> state_names;
 //      StatePartials<state_count> partials(double v_r, double normal_force, const double* z, int branch) const;
-//  set-valued laws also give  double slip_slope(double v_r, double normal_force, int direction) const;
-//  (dF/dv_r in slip): the rigs' analytic Jacobians for CVODE are built from these.
+// Optional: set-valued laws' `double slip_slope(double v_r, double normal_force, int direction) const` (dF/dv_r in
+// slip) and state laws' `partials`: the rigs' analytic Jacobians for CVODE are built from these; without them
+// CVODE builds its Jacobian from difference quotients. `static constexpr bool stiff = true` picks CVODE BDF.
 // Every law has `static constexpr const char* name`. A law never integrates anything itself.
+// check_friction_law<Law>() (below) static_asserts each requirement with a message naming it; the rigs and
+// ContactSwitching call it first, so a law that misses a member fails there, not deep inside a rig.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "../solve/hybrid_system.hpp"  // detail::detected, declares_stiff
 
 namespace frictionsim {
 
@@ -39,5 +46,73 @@ inline const char* contact_mode_name(int mode) {
 }
 
 inline int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
+
+namespace detail {
+template <class L> using law_name_t = decltype(static_cast<const char*>(L::name));
+template <class L> using has_stick_t = decltype(bool{L::has_stick});
+template <class L> using state_count_t = decltype(std::integral_constant<std::size_t, L::state_count>{});
+template <class L> using static_limit_t = decltype(double{std::declval<const L&>().static_limit(0.0)});
+template <class L> using slip_force_t = decltype(double{std::declval<const L&>().slip_force(0.0, 0.0, 1)});
+template <class L> using karnopp_band_t = decltype(double{std::declval<const L&>().karnopp_band()});
+template <class L> using slip_slope_t = decltype(double{std::declval<const L&>().slip_slope(0.0, 0.0, 1)});
+template <class L> using force_t =
+    decltype(double{std::declval<const L&>().force(0.0, 0.0, std::declval<const double*>(), 1)});
+template <class L> using state_derivative_t = decltype(std::declval<const L&>().state_derivative(
+    0.0, 0.0, std::declval<const double*>(), 1, std::declval<double*>()));
+template <class L> using kink_t = decltype(bool{L::kink_at_zero_velocity});
+template <class L> using state_names_of_t =
+    std::enable_if_t<std::tuple_size<std::decay_t<decltype(L::state_names)>>::value == L::state_count>;
+template <class L> using partials_t =
+    decltype(std::declval<const L&>().partials(0.0, 0.0, std::declval<const double*>(), 1).force_velocity);
+
+template <class L, bool = detected<L, has_stick_t>::value>
+struct set_valued_law : std::false_type {};
+template <class L>
+struct set_valued_law<L, true> : std::bool_constant<L::has_stick> {};
+}  // namespace detail
+
+/// Does Law give the analytic first derivatives the rigs' Jacobians need (slip_slope or partials)?
+template <class Law>
+constexpr bool law_has_partials_v = detail::set_valued_law<Law>::value
+                                        ? detail::detected<Law, detail::slip_slope_t>::value
+                                        : detail::detected<Law, detail::partials_t>::value;
+
+/// static_asserts naming the first missing member of the FrictionLaw concept above; true when Law meets it.
+template <class Law>
+constexpr bool check_friction_law() {
+    using namespace detail;
+    static_assert(detected<Law, law_name_t>::value, "FrictionLaw requires `static constexpr const char* name`");
+    static_assert(detected<Law, has_stick_t>::value,
+                  "FrictionLaw requires `static constexpr bool has_stick` (true: set-valued with exact stick, "
+                  "false: a state law)");
+    static_assert(detected<Law, state_count_t>::value,
+                  "FrictionLaw requires `static constexpr std::size_t state_count` (0 for a set-valued law)");
+    if constexpr (detected<Law, has_stick_t>::value && detected<Law, state_count_t>::value) {
+        if constexpr (Law::has_stick) {
+            static_assert(Law::state_count == 0, "FrictionLaw: a set-valued law (has_stick = true) has state_count 0");
+            static_assert(detected<Law, static_limit_t>::value,
+                          "FrictionLaw requires `double static_limit(double normal_force) const` of a set-valued law");
+            static_assert(detected<Law, slip_force_t>::value,
+                          "FrictionLaw requires `double slip_force(double v_r, double normal_force, int direction) "
+                          "const` of a set-valued law");
+            static_assert(detected<Law, karnopp_band_t>::value,
+                          "FrictionLaw requires `double karnopp_band() const` of a set-valued law (0: exact stick)");
+        } else {
+            static_assert(detected<Law, force_t>::value,
+                          "FrictionLaw requires `double force(double v_r, double normal_force, const double* z, int "
+                          "branch) const` of a state law");
+            static_assert(detected<Law, state_derivative_t>::value,
+                          "FrictionLaw requires `void state_derivative(double v_r, double normal_force, const double* "
+                          "z, int branch, double* dz) const` of a state law");
+            static_assert(detected<Law, kink_t>::value,
+                          "FrictionLaw requires `static constexpr bool kink_at_zero_velocity` of a state law");
+            static_assert(detected<Law, state_names_of_t>::value,
+                          "FrictionLaw requires `static constexpr std::array<const char*, state_count> state_names` "
+                          "of a state law");
+        }
+    }
+    return detected<Law, law_name_t>::value && detected<Law, has_stick_t>::value &&
+           detected<Law, state_count_t>::value;
+}
 
 }  // namespace frictionsim

@@ -8,24 +8,14 @@
 #include <cmath>
 #include <cstddef>
 
-#include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "law.hpp"
 
 namespace frictionsim {
 
 namespace detail {
-/// What the bristle laws (LuGre, ElastoPlastic) share: the rules on their common parameters, the steady sliding
-/// level g(v) = N (mu_c + (mu_s - mu_c) exp(-(v/v_s)^2)) and its slope dg/dv.
-template <class Params>
-void validate_bristles(const char* owner, const Params& p) {
-    require_positive(owner, "coulomb_coefficient", p.coulomb_coefficient);
-    require_at_least(owner, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
-                     ">= coulomb_coefficient and finite");
-    require_positive(owner, "stribeck_velocity", p.stribeck_velocity);
-    require_positive(owner, "bristle_stiffness", p.bristle_stiffness);
-    require_non_negative(owner, "bristle_damping", p.bristle_damping);
-    require_non_negative(owner, "viscous_damping", p.viscous_damping);
-}
+/// What the bristle laws (LuGre, ElastoPlastic) share besides their parameter table: the steady sliding level
+/// g(v) = N (mu_c + (mu_s - mu_c) exp(-(v/v_s)^2)) and its slope dg/dv.
 template <class Params>
 double stribeck_level(const Params& p, double v_r, double normal_force) {
     const double r = v_r / p.stribeck_velocity;
@@ -42,6 +32,7 @@ double stribeck_level_slope(const Params& p, double v_r, double normal_force) {
 class LuGre {
 public:
     static constexpr const char* name = "LuGre";
+    static constexpr const char* key = "lugre";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = false;
     static constexpr bool stiff = true;  ///< bristle modes ~ sqrt(sigma0/m), z relaxation sigma0 |v| / g(v)
@@ -54,10 +45,24 @@ public:
         double stribeck_velocity = 1e-3;    ///< v_s, m/s
         double bristle_stiffness = 1e5;     ///< sigma0, N/m
         double bristle_damping = 316.2277660168379;  ///< sigma1, N s/m (sqrt(1e5) in Canudas de Wit 1995)
-        double viscous_damping = 0.4;       ///< sigma2, N s/m
+        double viscous_damping = 0.0;       ///< sigma2, N s/m (0.4 in Canudas de Wit 1995)
     };
+    static constexpr std::array<Field<Params>, 6> fields{{
+        {"coulomb_coefficient", "mu_c", "-", Rule::positive(), &Params::coulomb_coefficient,
+         "Coulomb coefficient (Fc = mu F_N).", "mu", true},
+        {"static_coefficient", "mu_s", "-", Rule::at_least_field("coulomb_coefficient"), &Params::static_coefficient,
+         "Static coefficient (Fs = mu_static F_N).", "mu_static", true},
+        {"stribeck_velocity", "v_s", "m/s", Rule::positive(), &Params::stribeck_velocity, "Stribeck velocity.",
+         nullptr, true},
+        {"bristle_stiffness", "sigma_0", "N/m", Rule::positive(), &Params::bristle_stiffness, "Bristle stiffness.",
+         nullptr, true},
+        {"bristle_damping", "sigma_1", "N s/m", Rule::non_negative(), &Params::bristle_damping,
+         "Bristle (micro-)damping.", nullptr, true},
+        {"viscous_damping", "sigma_2", "N s/m", Rule::non_negative(), &Params::viscous_damping, "Viscous friction.",
+         nullptr},
+    }};
 
-    explicit LuGre(const Params& p) : p_(p) { detail::validate_bristles(name, p); }
+    explicit LuGre(const Params& p) : p_(p) { validate_fields(name, p, fields); }
 
     const Params& params() const { return p_; }
 

@@ -3,10 +3,11 @@
 // then |v_r| < band counts as stick and the friction force saturates the force needed to stick (Karnopp 1985).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 
-#include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "law.hpp"
 
 namespace frictionsim {
@@ -14,6 +15,7 @@ namespace frictionsim {
 class Stribeck {
 public:
     static constexpr const char* name = "Stribeck";
+    static constexpr const char* key = "stribeck";
     static constexpr bool has_stick = true;
     static constexpr std::size_t state_count = 0;
 
@@ -26,15 +28,22 @@ public:
         double karnopp_band = 0.0;          ///< m/s; 0 = exact stick
     };
 
-    explicit Stribeck(const Params& p) : p_(p) {
-        detail::require_positive(name, "coulomb_coefficient", p.coulomb_coefficient);
-        detail::require_at_least(name, "static_coefficient", p.static_coefficient, p.coulomb_coefficient,
-                                 ">= coulomb_coefficient and finite");
-        detail::require_positive(name, "stribeck_velocity", p.stribeck_velocity);
-        detail::require_positive(name, "shape_exponent", p.shape_exponent);
-        detail::require_non_negative(name, "viscous_coefficient", p.viscous_coefficient);
-        detail::require_non_negative(name, "karnopp_band", p.karnopp_band);
-    }
+    static constexpr std::array<Field<Params>, 6> fields{{
+        {"coulomb_coefficient", "mu_c", "-", Rule::positive(), &Params::coulomb_coefficient,
+         "Coulomb (high-speed) coefficient.", "mu", true},
+        {"static_coefficient", "mu_s", "-", Rule::at_least_field("coulomb_coefficient"), &Params::static_coefficient,
+         "Static (breakaway) coefficient.", "mu_static", true},
+        {"stribeck_velocity", "v_s", "m/s", Rule::positive(), &Params::stribeck_velocity, "Stribeck velocity.",
+         nullptr, true},
+        {"shape_exponent", "delta", "-", Rule::positive(), &Params::shape_exponent,
+         "Shape of the decay (2: Gaussian, 1: exponential).", nullptr},
+        {"viscous_coefficient", "sigma_v", "N s/m", Rule::non_negative(), &Params::viscous_coefficient,
+         "Viscous friction.", nullptr},
+        {"karnopp_band", "dv", "m/s", Rule::non_negative(), &Params::karnopp_band,
+         "Half-width of the Karnopp stick band; 0 means exact stick.", nullptr},
+    }};
+
+    explicit Stribeck(const Params& p) : p_(p) { validate_fields(name, p, fields); }
 
     const Params& params() const { return p_; }
 

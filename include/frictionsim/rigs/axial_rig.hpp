@@ -12,13 +12,14 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <optional>
 #include <utility>
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
-#include "../solve/options.hpp"
-#include "contact_switching.hpp"
+#include "../solve/hybrid_system.hpp"
+#include "../contact/switching.hpp"
 
 namespace frictionsim {
 
@@ -43,6 +44,8 @@ struct AxialRigParams {
 
 template <class Law>
 class AxialRig {
+    static_assert(check_friction_law<Law>(), "AxialRig<Law>: Law must meet the FrictionLaw concept (see above)");
+
     using Switching = ContactSwitching<Law>;
     static constexpr std::size_t Z = Law::state_count;
 
@@ -116,6 +119,8 @@ public:
 
     /// Analytic Jacobian d(rhs)/dx, column-major (J[column * state_size + row]), entries not set left as given
     /// (CVODE zeroes J first).
+    /// Only for laws with analytic partials (law_has_partials_v); CVODE builds the rest from difference quotients.
+    template <class L = Law, std::enable_if_t<law_has_partials_v<L>, int> = 0>
     void jacobian(double t, const double* x, int mode, double* J) const {
         constexpr std::size_t n = state_size;
         const auto at = [&](std::size_t row, std::size_t column) -> double& { return J[column * n + row]; };

@@ -18,19 +18,22 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <limits>
 #include <stdexcept>
 #include <utility>
 
 #include "../detail/validate.hpp"
-#include "../solve/options.hpp"
-#include "contact_switching.hpp"
+#include "../solve/hybrid_system.hpp"
+#include "../contact/switching.hpp"
 #include "signals.hpp"
 
 namespace frictionsim {
 
 template <class Law, class RelativeVelocity, class NormalForce = ConstantSignal>
 class KinematicRig {
+    static_assert(check_friction_law<Law>(), "KinematicRig<Law>: Law must meet the FrictionLaw concept (see above)");
+
     static constexpr std::size_t Z = Law::state_count;
     static constexpr bool branches = Law::has_stick || ContactSwitching<Law>::guard_count == 1;
 
@@ -77,6 +80,8 @@ public:
     }
 
     /// Analytic Jacobian, column-major: only the law's states are free (v_r and N are imposed).
+    /// Only for laws with analytic partials (law_has_partials_v); CVODE builds the rest from difference quotients.
+    template <class L = Law, std::enable_if_t<law_has_partials_v<L>, int> = 0>
     void jacobian(double t, const double* x, int mode, double* J) const {
         if constexpr (Z > 0) {
             constexpr std::size_t n = state_size;

@@ -35,12 +35,13 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
-#include "disc_contact.hpp"
+#include "../contact/disc_contact.hpp"
 
 namespace frictionsim {
 
@@ -176,6 +177,8 @@ public:
     }
 
     /// Analytic Jacobian d(rhs)/dx, column-major (J[column * state_size + row]); CVODE zeroes J first.
+    /// Only for laws with analytic partials (law_has_partials_v); CVODE builds the rest from difference quotients.
+    template <class L = Law, std::enable_if_t<std::is_same_v<L, HystereticFriction> || law_has_partials_v<L>, int> = 0>
     void jacobian(double, const double* x, int mode, double* J) const {
         constexpr std::size_t n = state_size;
         const auto at = [&](std::size_t row, std::size_t column) -> double& { return J[column * n + row]; };

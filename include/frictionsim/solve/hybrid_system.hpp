@@ -35,9 +35,89 @@
 // leaves zero towards its triggering side fires at once instead of being silently masked.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <type_traits>
+#include <utility>
 
 namespace frictionsim {
+
+namespace detail {
+/// C++17 detection idiom: is Op<T> well-formed?
+template <class, template <class> class Op, class = void>
+struct detected : std::false_type {};
+template <class T, template <class> class Op>
+struct detected<T, Op, std::void_t<Op<T>>> : std::true_type {};
+
+template <class S> using state_size_t = decltype(std::integral_constant<std::size_t, S::state_size>{});
+template <class S> using guard_count_t = decltype(std::integral_constant<std::size_t, S::guard_count>{});
+template <class S> using rhs_t = decltype(std::declval<const S&>().rhs(0.0, std::declval<const double*>(), 0,
+                                                                        std::declval<double*>()));
+template <class S> using guards_t = decltype(std::declval<const S&>().guards(0.0, std::declval<const double*>(), 0,
+                                                                              std::declval<double*>()));
+template <class S> using guard_direction_t =
+    decltype(int{std::declval<const S&>().guard_direction(std::size_t{}, 0)});
+template <class S> using guard_name_t =
+    decltype(static_cast<const char*>(std::declval<const S&>().guard_name(std::size_t{}, 0)));
+template <class S> using initial_mode_t =
+    decltype(int{std::declval<const S&>().initial_mode(0.0, std::declval<const double*>())});
+template <class S> using switch_mode_t = decltype(int{std::declval<const S&>().switch_mode(
+    0.0, std::declval<double*>(), 0, std::declval<const int*>())});
+template <class S> using mode_name_t = decltype(static_cast<const char*>(std::declval<const S&>().mode_name(0)));
+template <class S> using state_names_t = decltype(std::declval<const S&>().state_names()[0]);
+template <class S> using friction_force_t = decltype(double{
+    std::declval<const S&>().friction_force(0.0, std::declval<const double*>(), 0)});
+template <class S> using initial_state_t = decltype(std::declval<const S&>().initial_state()[0]);
+}  // namespace detail
+
+/// Does a system (rig) or law declare `static constexpr bool stiff = true`? Picks CVODE BDF under
+/// Method::automatic. Measured, see bench/integrators: LuGre's bristle dynamics make BDF 1.8x faster than
+/// Dormand-Prince; on the axial rig with Coulomb or Dahl friction Dormand-Prince is ~20x faster than CVODE BDF.
+template <class T, class = void>
+struct declares_stiff : std::false_type {};
+template <class T>
+struct declares_stiff<T, std::void_t<decltype(T::stiff)>> : std::bool_constant<T::stiff> {};
+
+/// Does S meet the HybridSystem concept above (its required members)?
+template <class S>
+constexpr bool is_hybrid_system_v =
+    detail::detected<S, detail::state_size_t>::value && detail::detected<S, detail::guard_count_t>::value &&
+    detail::detected<S, detail::rhs_t>::value && detail::detected<S, detail::guards_t>::value &&
+    detail::detected<S, detail::guard_direction_t>::value && detail::detected<S, detail::guard_name_t>::value &&
+    detail::detected<S, detail::initial_mode_t>::value && detail::detected<S, detail::switch_mode_t>::value &&
+    detail::detected<S, detail::mode_name_t>::value && detail::detected<S, detail::state_names_t>::value &&
+    detail::detected<S, detail::friction_force_t>::value && detail::detected<S, detail::initial_state_t>::value;
+
+/// static_asserts naming the first missing member of the HybridSystem concept; true when S meets it. Called at
+/// the top of simulate() / simulate_with(), so a rig that misses a member fails there, readably.
+template <class S>
+constexpr bool check_hybrid_system() {
+    using namespace detail;
+    static_assert(detected<S, state_size_t>::value,
+                  "HybridSystem requires `static constexpr std::size_t state_size` (the continuous states)");
+    static_assert(detected<S, guard_count_t>::value,
+                  "HybridSystem requires `static constexpr std::size_t guard_count` (switching functions per mode)");
+    static_assert(detected<S, rhs_t>::value,
+                  "HybridSystem requires `void rhs(double t, const double* x, int mode, double* dxdt) const`");
+    static_assert(detected<S, guards_t>::value,
+                  "HybridSystem requires `void guards(double t, const double* x, int mode, double* g) const`");
+    static_assert(detected<S, guard_direction_t>::value,
+                  "HybridSystem requires `int guard_direction(std::size_t i, int mode) const` (-1, +1 or 0)");
+    static_assert(detected<S, guard_name_t>::value,
+                  "HybridSystem requires `const char* guard_name(std::size_t i, int mode) const`");
+    static_assert(detected<S, initial_mode_t>::value,
+                  "HybridSystem requires `int initial_mode(double t, const double* x) const`");
+    static_assert(detected<S, switch_mode_t>::value,
+                  "HybridSystem requires `int switch_mode(double t, double* x, int mode, const int* fired) const`");
+    static_assert(detected<S, mode_name_t>::value, "HybridSystem requires `const char* mode_name(int mode) const`");
+    static_assert(detected<S, state_names_t>::value,
+                  "HybridSystem requires `std::array<const char*, state_size> state_names() const`");
+    static_assert(detected<S, friction_force_t>::value,
+                  "HybridSystem requires `double friction_force(double t, const double* x, int mode) const`");
+    static_assert(detected<S, initial_state_t>::value,
+                  "HybridSystem requires `std::array<double, state_size> initial_state() const`");
+    return is_hybrid_system_v<S>;
+}
 
 struct StepResult {
     double t = 0.0;

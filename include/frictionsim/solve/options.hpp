@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
+#include "hybrid_system.hpp"
 
 namespace frictionsim {
 
@@ -29,14 +30,6 @@ inline const char* method_name(Method m) {
     }
     return "unknown";
 }
-
-/// Does a system (rig) or law declare `static constexpr bool stiff = true`? Measured, see bench/integrators:
-/// LuGre's bristle dynamics make BDF 1.8x faster than Dormand-Prince; on the axial rig with Coulomb or Dahl
-/// friction Dormand-Prince is ~20x faster than CVODE BDF at rtol 1e-8.
-template <class T, class = void>
-struct declares_stiff : std::false_type {};
-template <class T>
-struct declares_stiff<T, std::void_t<decltype(T::stiff)>> : std::bool_constant<T::stiff> {};
 
 template <class System>
 constexpr Method resolve_method(Method requested) {

@@ -24,6 +24,7 @@ namespace frictionsim {
 
 template <class Law>
 struct ContactSwitching {
+    static_assert(check_friction_law<Law>(), "ContactSwitching<Law>: Law must meet the FrictionLaw concept (see above)");
     static constexpr bool set_valued = Law::has_stick;
     static constexpr std::size_t guard_count = [] {
         if constexpr (Law::has_stick) return std::size_t{2};

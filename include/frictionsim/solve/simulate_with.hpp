@@ -25,6 +25,9 @@ inline std::string loose_tolerance_warning(double rtol) {
 
 template <template <class> class Integrator, class System>
 Result simulate_with(const System& system, double t_end, const SolverOptions& options, double t_start = 0.0) {
+    if constexpr (!check_hybrid_system<System>()) {
+        return Result{};  // not reached: check_hybrid_system's static_assert has named what System misses
+    } else {
     const SolverOptions* opts = &options;
     SolverOptions every_step;
     if (options.output_times.empty() && !options.record_steps) {
@@ -42,6 +45,7 @@ Result simulate_with(const System& system, double t_end, const SolverOptions& op
     } catch (SimulationError& e) {
         e.attach_partial(recorder.finish(false, e.time_reached()));
         throw;
+    }
     }
 }
 

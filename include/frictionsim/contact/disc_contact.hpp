@@ -29,8 +29,8 @@
 
 #include "../error.hpp"
 #include "../friction/hysteretic.hpp"
-#include "../solve/options.hpp"
-#include "contact_switching.hpp"
+#include "../solve/hybrid_system.hpp"
+#include "switching.hpp"
 
 namespace frictionsim {
 
