@@ -61,7 +61,7 @@ friction_impulse [N s], friction_work [J], drive_work [J] (drive work = energy c
 
 Parameters
 ----------
-friction : Coulomb | Stribeck | Dahl | LuGre | ElastoPlastic
+friction : a friction law (any class of fs.FRICTION_LAWS)
 mass : float            m [kg], > 0
 drive_stiffness : float k_d [N/m], > 0
 sliding_velocity : float v_d [m/s], >= 0

@@ -28,11 +28,15 @@ py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwarg
 
 /// Every instantaneous friction law a rig can run with. One variant alternative per law: the rigs are
 /// instantiated once per law, the right-hand side stays free of virtual calls.
-using FrictionLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic>;
+using FrictionLaw = variant_of<EngineLaws>::type;
 
 /// The Python object (a bound law) -> the variant; TypeError naming `parameter` for anything else.
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter);
 py::object friction_law_to_python(const FrictionLaw& law);
+/// Is `law` an instance of one of EngineLaws' classes?
+bool is_engine_law(py::handle law);
+/// "Coulomb, Stribeck, ... or ElastoPlastic" (with `extra` as the last name when given), for error messages.
+std::string engine_law_names(const char* extra = nullptr);
 
 /// A prescribed signal of time for the kinematic rig: a constant, samples (piecewise linear), the paper's
 /// harmonic sliding velocity, or a Python callable (called with the GIL re-acquired). A switch per call
@@ -63,8 +67,6 @@ private:
     std::shared_ptr<py::object> function_;
 };
 
-/// Rethrows InvalidParameter from a law's constructor with the Python keyword names (mu, mu_static).
-[[noreturn]] void rethrow_with_python_names(const InvalidParameter& e);
 
 void register_errors(py::module_& m);
 void register_laws(py::module_& m);

@@ -212,7 +212,7 @@ friction_work int F v_r dt [J].
 
 Parameters
 ----------
-friction : Coulomb | Stribeck (no Karnopp band) | Dahl | LuGre | ElastoPlastic
+friction : a friction law (any class of fs.FRICTION_LAWS; a Stribeck law without Karnopp band)
 relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewise linear)
 normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
 initial_state : sequence of float, optional

@@ -34,8 +34,14 @@ std::shared_ptr<Result> simulate_variant(const RigVariant& rig, double t_end, co
     }
 }
 
-/// One rig type per law, built from a FrictionLaw: std::variant<Rig<Coulomb>, Rig<Stribeck>, ...>.
-template <template <class> class Rig>
-using RigVariant = std::variant<Rig<Coulomb>, Rig<Stribeck>, Rig<Dahl>, Rig<LuGre>, Rig<ElastoPlastic>>;
+/// One rig type per law of a list: std::variant<Rig<Coulomb>, Rig<Stribeck>, ...> (EngineLaws by default).
+template <template <class> class Rig, class Laws>
+struct rig_variant;
+template <template <class> class Rig, class... Law>
+struct rig_variant<Rig, TypeList<Law...>> {
+    using type = std::variant<Rig<Law>...>;
+};
+template <template <class> class Rig, class Laws = EngineLaws>
+using RigVariant = typename rig_variant<Rig, Laws>::type;
 
 }  // namespace frictionsim::python

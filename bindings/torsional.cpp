@@ -42,20 +42,18 @@ std::string format(double v) {
     return s.str();
 }
 
-template <class Law>
-using Torsional = TorsionalRig<Law>;
-using TorsionalLaw = std::variant<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, HystereticFriction>;
-using TorsionalVariant = std::variant<Torsional<Coulomb>, Torsional<Stribeck>, Torsional<Dahl>, Torsional<LuGre>,
-                                      Torsional<ElastoPlastic>, Torsional<HystereticFriction>>;
+/// The engine's laws and paper 001's eq 6, which only the disc (and the kinematic rig) can carry.
+using TorsionalLaws = append<EngineLaws, HystereticFriction>::type;
+using TorsionalLaw = variant_of<TorsionalLaws>::type;
+using TorsionalVariant = RigVariant<TorsionalRig, TorsionalLaws>;
 
 TorsionalLaw torsional_law_from_python(py::handle law) {
     require_constructed(law);
     if (py::isinstance<HystereticFriction>(law)) return law.cast<HystereticFriction>();
-    if (py::isinstance<Coulomb>(law) || py::isinstance<Stribeck>(law) || py::isinstance<Dahl>(law) ||
-        py::isinstance<LuGre>(law) || py::isinstance<ElastoPlastic>(law))
+    if (!py::isinstance<PowerLawCoefficient>(law) && is_engine_law(law))
         return std::visit([](auto l) -> TorsionalLaw { return l; }, friction_law_from_python(law, "friction"));
-    throw py::type_error("friction must be a friction law (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic or "
-                         "HystereticFriction), got " + std::string(py::str(py::type::of(law).attr("__name__"))));
+    throw py::type_error("friction must be a friction law (" + engine_law_names("HystereticFriction") + "), got " +
+                         std::string(py::str(py::type::of(law).attr("__name__"))));
 }
 
 /// The fields of TorsionalRigParams in keyword order: one table for init, properties, pickling and repr.
@@ -257,7 +255,7 @@ friction torque T_f2 on the disc:
 Defaults: Tables 1-2 at the Fig. 7 operating point (w_ref = 5.76 rad/s, N2 = 35 N). J_m = J3 / eta^2 (Table 1's
 J3 read as referred to the load side), k_i = 3.5 (Table 2 misprints its label). SI units; all keywords optional.
 
-friction : Coulomb | Stribeck | Dahl | LuGre | ElastoPlastic | HystereticFriction
+friction : a friction law (any class of fs.FRICTION_LAWS) or HystereticFriction
     The engine's laws act at contact_radius r with normal force N2 (v_r = r w2, T_f2 = r F); the
     HystereticFriction of eq 6 acts on w2 and dw2/dt directly, scaled by N2 / its reference normal force.
 

@@ -10,6 +10,7 @@
 #include "friction/dahl.hpp"
 #include "friction/elasto_plastic.hpp"
 #include "friction/hysteretic.hpp"
+#include "friction/laws.hpp"
 #include "friction/lugre.hpp"
 #include "friction/power_law.hpp"
 #include "friction/stribeck.hpp"

@@ -65,12 +65,13 @@ struct Rule {
         return true;
     }
 
-    /// The rule in words, as error messages and docstrings print it: "positive and finite", "in [0.5, 50]".
-    std::string text() const {
+    /// The rule in words, as error messages and docstrings print it: "positive and finite", "in [0.5, 50]";
+    /// `bound_name` replaces the at_least field's name (its public name, for Python).
+    std::string text(const char* bound_name = nullptr) const {
         const bool has_lower = std::isfinite(lower), has_upper = std::isfinite(upper);
         std::ostringstream s;
         s.precision(12);
-        if (at_least) s << ">= " << at_least << " and finite";
+        if (at_least) s << ">= " << (bound_name ? bound_name : at_least) << " and finite";
         else if (has_lower && has_upper)
             s << "in " << (lower_open ? "(" : "[") << lower << ", " << upper << (upper_open ? ")" : "]");
         else if (has_lower && lower == 0.0) s << (lower_open ? "positive and finite" : "non-negative and finite");

@@ -17,6 +17,11 @@ public:
     static constexpr const char* name = "Coulomb";
     static constexpr bool has_stick = true;
     static constexpr const char* key = "coulomb";
+    /// What Python's help() shows above the parameter list (the bindings add that from `fields`).
+    static constexpr const char* description = R"doc(Coulomb friction with static and kinetic coefficients (paper 000, eq 8).
+
+Slip: F = mu F_N sgn(v_r). Stick (in rigs with a mass): the contact holds v_r = 0 while the force needed
+stays within mu_static F_N (Leine's switch model), located exactly as events.)doc";
     static constexpr std::size_t state_count = 0;
 
     struct Params {

@@ -17,6 +17,13 @@ class Dahl {
 public:
     static constexpr const char* name = "Dahl";
     static constexpr const char* key = "dahl";
+    /// What Python's help() shows above the parameter list (the bindings add that from `fields`).
+    static constexpr const char* description = R"doc(Dahl friction (paper 000, eq 9; Dahl 1968): a bristle deflection z with
+
+    dz/dt = v_r sgn(b) |b|^alpha,   b = 1 - k_t z sgn(v_r) / (mu F_N),   F = k_t z.
+
+The force rises with slope k_t from a reversal and saturates at mu F_N. The kink of dz/dt at v_r = 0 is
+located as an event.)doc";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = true;
     static constexpr std::size_t state_count = 1;

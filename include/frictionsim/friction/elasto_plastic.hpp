@@ -29,6 +29,21 @@ class ElastoPlastic {
 public:
     static constexpr const char* name = "ElastoPlastic";
     static constexpr const char* key = "elasto_plastic";
+    /// What Python's help() shows above the parameter list (the bindings add that from `fields`).
+    static constexpr const char* description = R"doc(Elasto-plastic friction (Dupont, Hayward, Armstrong & Altpeter 2002): LuGre with a purely elastic presliding
+regime, so that small oscillations below break-away do not drift (LuGre creeps under them):
+
+    dz/dt = v_r (1 - alpha(z, v_r) z / z_ss(v_r)),   z_ss(v) = sgn(v) g(v) / sigma0,
+    g(v)  = F_N [mu + (mu_static - mu) exp(-(v/v_s)^2)],
+    F     = sigma0 z + sigma1 dz/dt + sigma2 v_r,
+
+    alpha = 0                                            |z| <= z_ba, or sgn(z) != sgn(v_r) (elastic)
+          = 1/2 + 1/2 sin(pi (|z| - z_m) / (z_max - z_ba))   z_ba < |z| < z_max,  z_m = (z_max + z_ba) / 2
+          = 1                                            |z| >= z_max (LuGre)
+
+with the paper's constants 0 <= z_ba < z_max <= |z_ss(v)|: z_max = mu F_N / sigma0 (the largest that rule allows)
+and z_ba = breakaway_fraction z_max. The kink of dz/dt at v_r = 0 is located as an event. Stiff (bristle
+dynamics): simulate() picks CVODE BDF for it.)doc";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = true;
     static constexpr bool stiff = true;  ///< bristle modes as LuGre's

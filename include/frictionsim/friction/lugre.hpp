@@ -33,6 +33,13 @@ class LuGre {
 public:
     static constexpr const char* name = "LuGre";
     static constexpr const char* key = "lugre";
+    /// What Python's help() shows above the parameter list (the bindings add that from `fields`).
+    static constexpr const char* description = R"doc(LuGre friction (Canudas de Wit, Olsson, Astrom & Lischinsky 1995):
+
+    dz/dt = v_r - sigma0 |v_r| z / g(v_r),  g(v) = F_N [mu + (mu_static - mu) exp(-(v/v_s)^2)],
+    F = sigma0 z + sigma1 dz/dt + sigma2 v_r.
+
+Stiff (bristle dynamics): simulate() picks CVODE BDF for it.)doc";
     static constexpr bool has_stick = false;
     static constexpr bool kink_at_zero_velocity = false;
     static constexpr bool stiff = true;  ///< bristle modes ~ sqrt(sigma0/m), z relaxation sigma0 |v| / g(v)

@@ -16,6 +16,12 @@ class Stribeck {
 public:
     static constexpr const char* name = "Stribeck";
     static constexpr const char* key = "stribeck";
+    /// What Python's help() shows above the parameter list (the bindings add that from `fields`).
+    static constexpr const char* description = R"doc(Stribeck friction with exact stick, or a Karnopp band (Karnopp 1985).
+
+Slip: F = [mu + (mu_static - mu) exp(-(|v_r|/v_s)^delta)] F_N sgn(v_r) + sigma_v v_r.
+Stick holds while the force needed stays within mu_static F_N. With karnopp_band > 0, |v_r| below the band
+counts as stick (the band is a located mode of its own).)doc";
     static constexpr bool has_stick = true;
     static constexpr std::size_t state_count = 0;
 

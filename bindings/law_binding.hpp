@@ -1,0 +1,202 @@
+// bind_law<Law>: one Python class per friction law, read off the law's description (its `fields` table, `key`,
+// `name`, `state_names`, optional `description`): constructor keywords (in table order, required ones without a
+// default, "unset" ones accepting None), properties, repr, pickling, the docstring, errors in Python's names, and
+// the class attributes `key`, `parameters` (one fs.Parameter per field), `state_names`, `has_stick`, `stiff`.
+// The model is manif's wrap_lie_group_base: one template, instantiated per type of a type list.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <cmath>
+#include <deque>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <utility>
+
+#include "common.hpp"
+
+namespace frictionsim::python {
+
+/// A parameter's description as Python sees it (fs.Parameter): from a Field of a parameter table.
+struct ParameterInfo {
+    std::string name, field, symbol, unit, rule, doc;
+    double lower, upper;
+    bool lower_open, upper_open, unset_allowed, required;
+    std::optional<std::string> at_least;  ///< public name of the field bounding this one from below
+    std::optional<double> default_value;   ///< None when required or unset by default
+};
+
+std::string format_double(double v);
+
+/// Text that pybind11 keeps a pointer to (docstrings, default descriptions) lives as long as the module.
+inline const char* kept(std::string text) {
+    static std::deque<std::string> store;
+    return store.emplace_back(std::move(text)).c_str();
+}
+
+/// The field that bounds `f` from below (its rule's at_least), or nullptr.
+template <class P, std::size_t N>
+const Field<P>* bound_field(const Field<P>& f, const std::array<Field<P>, N>& fields) {
+    if (f.rule.at_least)
+        for (const Field<P>& other : fields)
+            if (std::string(other.name) == f.rule.at_least) return &other;
+    return nullptr;
+}
+
+/// The rule in words with Python's names (">= mu", not ">= coulomb_coefficient").
+template <class P, std::size_t N>
+std::string public_rule(const Field<P>& f, const std::array<Field<P>, N>& fields) {
+    const Field<P>* bound = bound_field(f, fields);
+    return f.rule.text(bound ? bound->public_name() : nullptr);
+}
+
+template <class P, std::size_t N>
+py::tuple parameter_infos(const std::array<Field<P>, N>& fields) {
+    const P defaults{};
+    py::tuple out(N);
+    for (std::size_t i = 0; i < N; ++i) {
+        const Field<P>& f = fields[i];
+        ParameterInfo info{f.public_name(), f.name, f.symbol, f.unit, public_rule(f, fields), f.doc,
+                           f.rule.lower, f.rule.upper, f.rule.lower_open, f.rule.upper_open,
+                           f.rule.unset_allowed, f.required, std::nullopt, std::nullopt};
+        if (f.rule.at_least) info.at_least = bound_field(f, fields)->public_name();
+        const double d = defaults.*(f.member);
+        if (!f.required && !std::isnan(d)) info.default_value = d;
+        out[i] = py::cast(std::move(info));
+    }
+    return out;
+}
+
+/// Rethrows an InvalidParameter of `fields` under the field's public name: "LuGre: mu (coulomb_coefficient) must ...".
+template <class P, std::size_t N>
+[[noreturn]] void rethrow_with_public_name(const InvalidParameter& e, const std::array<Field<P>, N>& fields) {
+    for (const Field<P>& f : fields) {
+        if (e.parameter() != f.name || f.key == nullptr) continue;
+        std::string message = e.what();
+        const std::string needle = std::string(": ") + f.name + " must";
+        if (const auto at = message.find(needle); at != std::string::npos)
+            message.replace(at, needle.size(), std::string(": ") + f.key + " (" + f.name + ") must");
+        throw InvalidParameter(f.key, message);
+    }
+    throw e;
+}
+
+namespace law_binding {
+
+template <class T, class = void>
+struct has_description : std::false_type {};
+template <class T>
+struct has_description<T, std::void_t<decltype(T::description)>> : std::true_type {};
+template <class T, class = void>
+struct has_state_names : std::false_type {};
+template <class T>
+struct has_state_names<T, std::void_t<decltype(T::state_names)>> : std::true_type {};
+
+/// Keyword I of Law's constructor: double, or std::optional<double> (None = unset) for fields that may be unset.
+template <class Law, std::size_t I>
+using keyword_t = std::conditional_t<Law::fields[I].rule.unset_allowed, std::optional<double>, double>;
+
+template <class Law, std::size_t I>
+auto keyword_arg() {
+    constexpr auto f = Law::fields[I];
+    if constexpr (f.required) {
+        return py::arg(f.public_name());
+    } else if constexpr (f.rule.unset_allowed) {
+        return py::arg_v(f.public_name(), py::none(), "None");
+    } else {
+        const double d = typename Law::Params{}.*(f.member);
+        return py::arg_v(f.public_name(), d, kept(format_double(d)));
+    }
+}
+
+template <class Law, std::size_t... I>
+void def_init(py::class_<Law>& cls, std::index_sequence<I...>) {
+    cls.def(py::init([](keyword_t<Law, I>... values) {
+                typename Law::Params p{};
+                const auto set = [&p](auto field, const auto& value) {
+                    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::optional<double>>) {
+                        if (value && std::isnan(*value))
+                            throw InvalidParameter(field.public_name(),
+                                                   std::string(Law::name) + ": " + field.public_name() +
+                                                       " must be finite or None (got nan)");
+                        p.*(field.member) = value ? *value : std::numeric_limits<double>::quiet_NaN();
+                    } else {
+                        p.*(field.member) = value;
+                    }
+                };
+                (set(Law::fields[I], values), ...);
+                try {
+                    return Law(p);
+                } catch (const InvalidParameter& e) {
+                    rethrow_with_public_name(e, Law::fields);
+                }
+            }),
+            keyword_arg<Law, I>()...);
+}
+
+template <class Law>
+std::string docstring() {
+    std::string doc;
+    if constexpr (has_description<Law>::value) doc = std::string(Law::description) + "\n";
+    doc += "\nParameters\n----------\n";
+    const typename Law::Params defaults{};
+    for (const auto& f : Law::fields) {
+        doc += std::string(f.public_name()) + " : float" + (f.required ? "" : ", optional") + "\n    " + f.doc +
+               " " + f.symbol + " [" + f.unit + "], " + public_rule(f, Law::fields) + ".";
+        if (!f.required) {
+            const double d = defaults.*(f.member);
+            doc += std::isnan(d) ? std::string(" Default: unset.") : " Default: " + format_double(d) + ".";
+        }
+        doc += "\n";
+    }
+    if constexpr (Law::state_count > 0) {
+        doc += "\nStates: ";
+        for (std::size_t i = 0; i < Law::state_count; ++i) doc += (i ? ", " : "") + std::string(Law::state_names[i]);
+        doc += ".\n";
+    }
+    return doc;
+}
+
+}  // namespace law_binding
+
+template <class Law>
+py::class_<Law> bind_law(py::module_& m) {
+    static const std::string doc = law_binding::docstring<Law>();
+    py::class_<Law> cls(m, Law::name, doc.c_str());
+    constexpr std::size_t n = std::tuple_size<std::decay_t<decltype(Law::fields)>>::value;
+    law_binding::def_init(cls, std::make_index_sequence<n>{});
+    for (const auto& f : Law::fields) {
+        const auto member = f.member;
+        cls.def_property_readonly(f.public_name(), [member](const Law& law) { return law.params().*member; },
+                                  kept(std::string(f.symbol) + " [" + f.unit + "]: " + f.doc));
+    }
+    cls.attr("key") = Law::key;
+    cls.attr("parameters") = parameter_infos(Law::fields);
+    cls.attr("has_stick") = Law::has_stick;
+    cls.attr("stiff") = declares_stiff<Law>::value;
+    py::tuple states(Law::state_count);
+    if constexpr (law_binding::has_state_names<Law>::value)
+        for (std::size_t i = 0; i < Law::state_count; ++i) states[i] = py::str(Law::state_names[i]);
+    cls.attr("state_names") = states;
+    cls.def("__repr__", [](const Law& law) {
+        std::string out = std::string(Law::name) + "(";
+        const auto p = law.params();
+        bool first = true;
+        for (const auto& f : Law::fields) {
+            out += (first ? "" : ", ") + std::string(f.public_name()) + "=" + format_double(p.*(f.member));
+            first = false;
+        }
+        return out + ")";
+    });
+    cls.def("__reduce__", [](py::handle self) {
+        const auto p = self.cast<const Law&>().params();
+        py::tuple args(Law::fields.size());
+        for (std::size_t i = 0; i < Law::fields.size(); ++i) args[i] = p.*(Law::fields[i].member);
+        return reduce_by_construction(self, std::move(args));
+    });
+    return cls;
+}
+
+}  // namespace frictionsim::python
