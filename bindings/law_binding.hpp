@@ -26,6 +26,7 @@ struct ParameterInfo {
     bool lower_open, upper_open, unset_allowed, required;
     std::optional<std::string> at_least;  ///< public name of the field bounding this one from below
     std::optional<double> default_value;   ///< None when required or unset by default
+    double example;                        ///< the C++ Params default: a typical value, also for required ones
 };
 
 std::string format_double(double v);
@@ -60,7 +61,7 @@ py::tuple parameter_infos(const std::array<Field<P>, N>& fields) {
         const Field<P>& f = fields[i];
         ParameterInfo info{f.public_name(), f.name, f.symbol, f.unit, public_rule(f, fields), f.doc,
                            f.rule.lower, f.rule.upper, f.rule.lower_open, f.rule.upper_open,
-                           f.rule.unset_allowed, f.required, std::nullopt, std::nullopt};
+                           f.rule.unset_allowed, f.required, std::nullopt, std::nullopt, defaults.*(f.member)};
         if (f.rule.at_least) info.at_least = bound_field(f, fields)->public_name();
         const double d = defaults.*(f.member);
         if (!f.required && !std::isnan(d)) info.default_value = d;

@@ -120,6 +120,8 @@ for a required keyword.
         .def_readonly("unset_allowed", &ParameterInfo::unset_allowed)
         .def_readonly("required", &ParameterInfo::required)
         .def_readonly("default", &ParameterInfo::default_value)
+        .def_readonly("example", &ParameterInfo::example,
+                      "A typical value (the C++ default), also for a required keyword; NaN where unset.")
         .def("__repr__", [](const ParameterInfo& p) {
             return "Parameter(name='" + p.name + "', symbol='" + p.symbol + "', unit='" + p.unit + "', rule='" +
                    p.rule + "', default=" + (p.default_value ? format_double(*p.default_value) : "None") + ")";
