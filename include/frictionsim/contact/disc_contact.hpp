@@ -53,6 +53,7 @@ struct DiscPartials {
 
 template <class Law>
 class DiscContact {
+    static_assert(check_friction_law<Law>(), "DiscContact<Law>: Law must meet the FrictionLaw concept (see above)");
     using Switching = ContactSwitching<Law>;
 
 public:
