@@ -11,55 +11,50 @@ processing, plots, sweeps and a command line. SI units throughout.
 """
 
 from ._core import (
+    FRICTION_LAWS,
     AxialVibrationRig,
-    Coulomb,
-    Dahl,
-    ElastoPlastic,
     HystereticFriction,
     KinematicRig,
-    LuGre,
+    Parameter,
     PowerLawCoefficient,
-    Stribeck,
     TorsionalRig,
     table5,
     vibration_velocity_amplitude,
 )
 from .errors import AccuracyWarning, BudgetExceededError, ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
-from .simulation import METHODS, simulate
+from .simulation import METHODS, SOLVER_DEFAULTS, simulate
 from .sweeps import SweepResult, sweep
 
 __version__ = "0.1.0"
 
-#: Friction laws a rig can run with.
-FRICTION_LAWS = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic)
+#: Friction laws a rig can run with: the engine's list (include/frictionsim/friction/laws.hpp), each class named
+#: as in C++ (fs.Coulomb, fs.LuGre, ...), with its parameter table in ``Law.parameters``.
+globals().update({_law.__name__: _law for _law in FRICTION_LAWS})
 
 __all__ = [
     "AccuracyWarning",
     "AxialVibrationRig",
     "BudgetExceededError",
     "ChatteringError",
-    "Coulomb",
-    "Dahl",
-    "ElastoPlastic",
     "HystereticFriction",
     "Event",
     "FRICTION_LAWS",
     "InvalidParameterError",
     "KinematicRig",
-    "LuGre",
     "METHODS",
+    "Parameter",
+    "SOLVER_DEFAULTS",
     "PowerLawCoefficient",
     "Result",
     "SimulationError",
-    "Stribeck",
     "TorsionalRig",
     "simulate",
     "sweep",
     "SweepResult",
     "table5",
     "vibration_velocity_amplitude",
-]
+] + [_law.__name__ for _law in FRICTION_LAWS]
 
 
 def __getattr__(name: str):

@@ -13,20 +13,26 @@ from . import _core
 from .errors import AccuracyWarning, InvalidParameterError, SimulationError
 from .result import Result
 
-__all__ = ["simulate", "METHODS"]
+__all__ = ["simulate", "METHODS", "SOLVER_DEFAULTS"]
 
 #: Integrator names accepted by simulate(method=...).
 METHODS = ("automatic", "dormand_prince", "cvode_bdf", "cvode_adams")
 
 Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig", "_core.TorsionalRig"]
 
+#: The engine's defaults (C++ SolverOptions{}): every signature that offers solver options takes its defaults
+#: from here instead of restating them.
+SOLVER_DEFAULTS = _core.SolverOptions()
 
-def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float = 1e-8, atol: float = 1e-10,
-             atol_per_state: Optional[Sequence[float]] = None, output_times: Optional[Sequence[float]] = None,
-             record_steps: bool = False, max_steps: int = 10_000_000, max_step: float = math.inf,
-             initial_step: float = 0.0, max_events_in_window: int = 100, event_window: float = 1e-6,
-             t_start: float = 0.0, timeout: Optional[float] = None,
-             max_output_rows: Optional[int] = None) -> Result:
+
+def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float = SOLVER_DEFAULTS.rtol,
+             atol: float = SOLVER_DEFAULTS.atol, atol_per_state: Optional[Sequence[float]] = None,
+             output_times: Optional[Sequence[float]] = None, record_steps: bool = SOLVER_DEFAULTS.record_steps,
+             max_steps: int = SOLVER_DEFAULTS.max_steps, max_step: float = SOLVER_DEFAULTS.max_step,
+             initial_step: float = SOLVER_DEFAULTS.initial_step,
+             max_events_in_window: int = SOLVER_DEFAULTS.max_events_in_window,
+             event_window: float = SOLVER_DEFAULTS.event_window, t_start: float = 0.0,
+             timeout: Optional[float] = None, max_output_rows: Optional[int] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly

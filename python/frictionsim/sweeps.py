@@ -42,6 +42,7 @@ from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple, Union
 import numpy as np
 
 from .errors import InvalidParameterError
+from .simulation import SOLVER_DEFAULTS
 
 __all__ = [
     "SweepError",
@@ -427,7 +428,7 @@ class SweepResult:
 
 # ---------------------------------------------------------------------------------------------- ready-made functions
 def axial_mean_friction(*, friction: Any, t_end: float = 2.0, transient: float = 1.0, method: str = "automatic",
-                        rtol: float = 1e-8, atol: float = 1e-10, **rig_params: Any) -> float:
+                        rtol: float = SOLVER_DEFAULTS.rtol, atol: float = SOLVER_DEFAULTS.atol, **rig_params: Any) -> float:
     """Mean friction force F_df [N] of one :class:`frictionsim.AxialVibrationRig` run (paper 000, Table 4).
 
     Builds ``AxialVibrationRig(friction=friction, **rig_params)`` (``mass`` [kg], ``drive_stiffness`` [N/m],
@@ -451,7 +452,7 @@ def axial_mean_friction(*, friction: Any, t_end: float = 2.0, transient: float =
 
 def kinematic_mean_friction(*, friction: Any, sliding_velocity: float, velocity_amplitude: float, frequency: float,
                             normal_force: float, t_end: Optional[float] = None, transient: float = 0.0,
-                            method: str = "automatic", rtol: float = 1e-8, atol: float = 1e-10) -> float:
+                            method: str = "automatic", rtol: float = SOLVER_DEFAULTS.rtol, atol: float = SOLVER_DEFAULTS.atol) -> float:
     """Mean friction force [N] of a prescribed-motion contact, v_r = v_d - v_a cos(2 pi f t) (paper 000, eqs 8-9).
 
     Builds :meth:`frictionsim.KinematicRig.harmonic` with ``sliding_velocity`` v_d [m/s],

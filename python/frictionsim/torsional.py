@@ -27,6 +27,7 @@ import numpy as np
 
 from . import _core
 from .errors import InvalidParameterError
+from .simulation import SOLVER_DEFAULTS
 
 __all__ = ["FIG7", "LimitCycle", "StickSlipMap", "compare_laws", "fig7_friction", "fig7_laws", "limit_cycle",
            "simulate_fig7", "stick_slip_map", "stick_slip_point"]
@@ -126,7 +127,7 @@ def limit_cycle(result, transient: float = 0.0, *, speed: str = "disc_speed", le
 
 
 def simulate_fig7(friction=None, t_end: float = 40.0, *, sample_time: float = 1e-3, method: str = "automatic",
-                  rtol: float = 1e-8, **rig_params: Any):
+                  rtol: float = SOLVER_DEFAULTS.rtol, **rig_params: Any):
     """Simulate the rig (defaults: Fig. 7's operating point and :func:`fig7_friction`) from rest to ``t_end``
     [s], sampled every ``sample_time`` [s]; returns ``(rig, result)``."""
     from . import TorsionalRig, simulate
