@@ -143,7 +143,6 @@ def _parser() -> argparse.ArgumentParser:
 
 # ------------------------------------------------------------------------------------------------------- commands
 def _run(args) -> int:
-    from .demo import format_table
     from .scenario import ScenarioRun, load, run_case
 
     scenario = load(args.scenario)
@@ -165,25 +164,18 @@ def _run(args) -> int:
     result = ScenarioRun(scenario, runs)
     summary = result.summary()
     print(f"{args.scenario}: {scenario.title}" if scenario.title else str(args.scenario))
-    if result.torsional:
-        from .scenario_torsional import SUMMARY_COLUMNS, SUMMARY_NOTE
-
-        print(format_table(summary, SUMMARY_COLUMNS))
-        print(SUMMARY_NOTE)
-        written = _write(out, result.write)
-        print(f"wrote {out}: {', '.join(str(p) for p in written)}")
-        return 0
-    columns = [("case", "case", "s"), ("law", "law", "s"), ("F_N_N", "F_N [N]", ".4g"),
-               ("mu_F_N_N", "mu F_N [N]", ".4g"), ("F_df_N", "F_df [N]", ".5g"), ("mu_df", "mu_df", ".4g"),
-               ("reduction_percent", "reduction [%]", ".2f")]
-    if summary["F_df_table5_N"].notna().any():
-        columns.append(("F_df_table5_N", "Table 5 F_df [N]", ".4g"))
-    columns += [("events", "events", "d"), ("steps", "steps", "d")]
-    print(format_table(summary, columns))
-    print("F_df: mean friction over whole cycles; reduction = 1 - F_df / (mu F_N)")
+    print(_table(summary, result.analysis.summary_columns(summary)))
+    print(result.analysis.summary_note)
     written = _write(out, result.write)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
+
+
+def _table(frame, columns) -> str:
+    """The ``(column, header, format)`` columns of ``frame`` as text; NaN prints as "-"."""
+    shown = frame[[column for column, _, _ in columns]].set_axis([header for _, header, _ in columns], axis=1)
+    return shown.to_string(index=False, na_rep="-", formatters=[lambda value, spec=spec: format(value, spec)
+                                                                for _, _, spec in columns])
 
 
 def _demo(args) -> int:

@@ -270,8 +270,7 @@ class Paper001:
     def report(self, quick: bool) -> List[str]:
         rig = self.fig7.runs[0].rig
         summary = self.fig7.summary()
-        from .scenario_torsional import SUMMARY_COLUMNS, SUMMARY_NOTE
-
+        analysis = self.fig7.analysis
         m = self.map
         return [
             "paper 001: torsional drill-string rig (DC motor + PI speed control, gear 8:1, shaft, disc; eqs 1-6, "
@@ -279,8 +278,8 @@ class Paper001:
             f"4. Fig. 7 operating point: w_ref = {rig.reference_speed:g} rad/s, N2 = {rig.normal_force:g} N, "
             f"{self.fig7.runs[0].case.solver.t_end:g} s from rest, limit cycle after "
             f"{summary['transient_s'].iloc[0]:g} s (scenario fig7_torsional)",
-            format_table(summary, [c for c in SUMMARY_COLUMNS if c[0] not in ("steps",)]),
-            "   " + SUMMARY_NOTE,
+            format_table(summary, [c for c in analysis.summary_columns(summary) if c[0] not in ("steps",)]),
+            "   " + analysis.summary_note,
             "",
             f"5. Friction laws at the Fig. 7 point (frictionsim.torsional.fig7_laws; chosen sets, the paper prints "
             f"none), against paper 001 Fig. 7;",

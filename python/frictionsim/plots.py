@@ -7,7 +7,7 @@ notebooks alike. :func:`save` writes a PNG and clears the figure.
 Time-series inputs are ``traces``: a sequence of ``(label, frame)`` where ``frame`` is a pandas DataFrame with the
 columns of :meth:`frictionsim.scenario.CaseRun.timeseries` (t [s], friction_force [N], relative_displacement [m],
 relative_velocity [m/s], drive_force [N]), or for paper 001's torsional rig those of
-:meth:`frictionsim.scenario_torsional.TorsionalCaseRun.timeseries` (t [s], disc_speed and drive_speed [rad/s],
+:meth:`frictionsim.scenario.LimitCycleRun.timeseries` (t [s], disc_speed and drive_speed [rad/s],
 disc_acceleration [rad/s^2], friction_torque [N m], shaft_twist [rad], ...).
 """
 

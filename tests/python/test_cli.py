@@ -239,7 +239,7 @@ def test_simulation_failure_reports_time_and_writes_nothing(tmp_path, capsys, mo
     def failing(*args, **kwargs):
         raise fs.SimulationError("integrator step size underflow", 0.625)
 
-    monkeypatch.setattr(scenario, "simulate", failing)
+    monkeypatch.setattr(scenario.runner, "simulate", failing)
     out = tmp_path / "out"
     assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out)]) == 1
     err = capsys.readouterr().err

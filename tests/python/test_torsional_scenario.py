@@ -1,5 +1,5 @@
-"""Scenario files, plots and demo for paper 001's torsional rig (frictionsim.scenario, .scenario_torsional, .plots,
-.demo)."""
+"""Scenario files, plots and demo for paper 001's torsional rig (frictionsim.scenario and its torsional rig kind,
+.plots, .demo)."""
 
 import math
 from pathlib import Path
@@ -69,7 +69,7 @@ def test_fig7_shortcut_and_defaults():
     assert run.summary()["transient_s"] == 3.0 and run.summary()["stick_speed_rad_s"] == 1e-2  # t_end / 2, default
     assert parsed.output.plots == scenario.TORSIONAL_PLOTS
     # every rig key is a TorsionalRig keyword and property
-    for key in fs.scenario_torsional.RIG_KEYS:
+    for key in scenario.rig_kind("torsional").keys:
         fs.TorsionalRig(fs.Coulomb(0.3), **{key: getattr(rig, key)})
 
 
@@ -217,7 +217,7 @@ def test_schema_doc_names_the_torsional_keys():
     for word in ('type = "torsional"', "disc_inertia", '"hysteretic"', '"fig7"', "accelerating", "stick_speed",
                  "phase_portrait", "friction_torque_hysteresis", "disc_speed"):
         assert word in doc, word
-    assert "Fig. 7b" in fs.scenario_torsional.__doc__
+    assert "Fig. 7b" in scenario.rig_kind("torsional").__doc__
 
 
 # --------------------------------------------------------------------------------------------------------- plots

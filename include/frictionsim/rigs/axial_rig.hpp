@@ -18,6 +18,7 @@
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../contact/switching.hpp"
 
@@ -40,7 +41,24 @@ struct AxialRigParams {
     /// x(0), m. Default: 0 horizontally; vertically -m g / k_d, the spring preloaded to carry the weight.
     std::optional<double> initial_position;
     double initial_velocity = 0.0;      ///< x'(0), m/s
+
+    /// The numeric parameters (gravity and initial_position, a switch and an optional value, are checked apart).
+    static constexpr std::array<Field<AxialRigParams>, 8> fields();
 };
+
+inline constexpr std::array<Field<AxialRigParams>, 8> AxialRigParams::fields() {
+    using P = AxialRigParams;
+    return {{
+        {"mass", "m", "kg", Rule::positive(), &P::mass, "Specimen mass (0.2 kg: 170 x 30 x 5 mm of 45 steel)."},
+        {"drive_stiffness", "k_d", "N/m", Rule::positive(), &P::drive_stiffness, "Drive spring stiffness (not given by the paper; 2e4 N/m chosen)."},
+        {"sliding_velocity", "v_d", "m/s", Rule::non_negative(), &P::sliding_velocity, "Drive (sliding) velocity."},
+        {"amplitude", "u0", "m", Rule::non_negative(), &P::amplitude, "Vibration amplitude of the surface."},
+        {"frequency", "f", "Hz", Rule::positive(), &P::frequency, "Vibration frequency (w = 2 pi f)."},
+        {"normal_force", "F_N", "N", Rule::positive(), &P::normal_force, "Normal force."},
+        {"gravitational_acceleration", "g", "m/s^2", Rule::non_negative(), &P::gravitational_acceleration, "Used when gravity is on (vertical rig)."},
+        {"initial_velocity", "x'(0)", "m/s", Rule::finite(), &P::initial_velocity, "Initial velocity."},
+    }};
+}
 
 template <class Law>
 class AxialRig {
@@ -59,15 +77,8 @@ public:
 
     AxialRig(const AxialRigParams& p, Law law) : p_(p), law_(std::move(law)) {
         constexpr const char* who = "AxialRig";
-        detail::require_positive(who, "mass", p.mass);
-        detail::require_positive(who, "drive_stiffness", p.drive_stiffness);
-        detail::require_non_negative(who, "sliding_velocity", p.sliding_velocity);
-        detail::require_non_negative(who, "amplitude", p.amplitude);
-        detail::require_positive(who, "frequency", p.frequency);
-        detail::require_positive(who, "normal_force", p.normal_force);
-        detail::require_non_negative(who, "gravitational_acceleration", p.gravitational_acceleration);
+        validate_fields(who, p, AxialRigParams::fields());
         if (p.initial_position) detail::require_finite(who, "initial_position", *p.initial_position);
-        detail::require_finite(who, "initial_velocity", p.initial_velocity);
         omega_ = 2.0 * pi * p.frequency;
         weight_ = p.gravity ? p.mass * p.gravitational_acceleration : 0.0;
     }

@@ -41,6 +41,7 @@
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
+#include "../parameters.hpp"
 #include "../contact/disc_contact.hpp"
 
 namespace frictionsim {
@@ -65,7 +66,34 @@ struct TorsionalRigParams {
     double contact_radius = 0.1;                  ///< r, m: where the engine's laws act (v_r = r w2, T = r F)
     double initial_disc_speed = 0.0;              ///< w2(0), rad/s
     double initial_drive_speed = 0.0;             ///< w3(0), rad/s
+
+    static constexpr std::array<Field<TorsionalRigParams>, 18> fields();
 };
+
+/// The parameter table of TorsionalRigParams: validation, Python keywords, properties, repr and pickling read it.
+inline constexpr std::array<Field<TorsionalRigParams>, 18> TorsionalRigParams::fields() {
+    using P = TorsionalRigParams;
+    return {{
+        {"disc_inertia", "J2", "kg m^2", Rule::positive(), &P::disc_inertia, "Disc inertia (Table 1)."},
+        {"shaft_stiffness", "k2", "N m/rad", Rule::positive(), &P::shaft_stiffness, "Shaft stiffness (Table 1)."},
+        {"shaft_damping", "d2", "N m s/rad", Rule::non_negative(), &P::shaft_damping, "Shaft damping (Table 1)."},
+        {"motor_inertia", "J_m", "kg m^2", Rule::positive(), &P::motor_inertia, "Rotor inertia at the motor shaft (Table 1's J3 / eta^2)."},
+        {"gear_ratio", "eta", "-", Rule::positive(), &P::gear_ratio, "Gear ratio (eq 4): motor speed = eta w3."},
+        {"inductance", "L", "H", Rule::positive(), &P::inductance, "Armature inductance (Table 2)."},
+        {"resistance", "R", "Ohm", Rule::positive(), &P::resistance, "Armature resistance (Table 2)."},
+        {"torque_constant", "K_T", "N m/A", Rule::positive(), &P::torque_constant, "Motor torque constant (Table 2)."},
+        {"back_emf_constant", "K_E", "V s/rad", Rule::non_negative(), &P::back_emf_constant, "Back-emf constant (Table 2)."},
+        {"motor_friction_torque", "T_f", "N m", Rule::non_negative(), &P::motor_friction_torque, "Motor friction torque at the motor shaft (Table 2)."},
+        {"motor_viscous_coefficient", "C_m", "N m s/rad", Rule::non_negative(), &P::motor_viscous_coefficient, "Motor viscous friction (Table 2)."},
+        {"proportional_gain", "k_p", "V s/rad", Rule::non_negative(), &P::proportional_gain, "PI proportional gain (Table 2)."},
+        {"integral_gain", "k_i", "V/rad", Rule::non_negative(), &P::integral_gain, "PI integral gain (Table 2, printed as \"DC-motor moment of inertia\")."},
+        {"reference_speed", "w_ref", "rad/s", Rule::finite(), &P::reference_speed, "Reference speed, load side (eq 3)."},
+        {"normal_force", "N2", "N", Rule::positive(), &P::normal_force, "Normal force on the disc."},
+        {"contact_radius", "r", "m", Rule::positive(), &P::contact_radius, "Where the engine's laws act: v_r = r w2, T = r F."},
+        {"initial_disc_speed", "w2(0)", "rad/s", Rule::finite(), &P::initial_disc_speed, "Initial disc speed."},
+        {"initial_drive_speed", "w3(0)", "rad/s", Rule::finite(), &P::initial_drive_speed, "Initial drive speed (load side)."},
+    }};
+}
 
 namespace detail {
 /// The motor's internal friction as a set-valued law for ContactSwitching: T_f against the rotation, stick
@@ -301,25 +329,7 @@ public:
 
 private:
     static const TorsionalRigParams& validated(const TorsionalRigParams& p) {
-        constexpr const char* who = "TorsionalRig";
-        detail::require_positive(who, "disc_inertia", p.disc_inertia);
-        detail::require_positive(who, "shaft_stiffness", p.shaft_stiffness);
-        detail::require_non_negative(who, "shaft_damping", p.shaft_damping);
-        detail::require_positive(who, "motor_inertia", p.motor_inertia);
-        detail::require_positive(who, "gear_ratio", p.gear_ratio);
-        detail::require_positive(who, "inductance", p.inductance);
-        detail::require_positive(who, "resistance", p.resistance);
-        detail::require_positive(who, "torque_constant", p.torque_constant);
-        detail::require_non_negative(who, "back_emf_constant", p.back_emf_constant);
-        detail::require_non_negative(who, "motor_friction_torque", p.motor_friction_torque);
-        detail::require_non_negative(who, "motor_viscous_coefficient", p.motor_viscous_coefficient);
-        detail::require_non_negative(who, "proportional_gain", p.proportional_gain);
-        detail::require_non_negative(who, "integral_gain", p.integral_gain);
-        detail::require_finite(who, "reference_speed", p.reference_speed);
-        detail::require_positive(who, "normal_force", p.normal_force);
-        detail::require_positive(who, "contact_radius", p.contact_radius);
-        detail::require_finite(who, "initial_disc_speed", p.initial_disc_speed);
-        detail::require_finite(who, "initial_drive_speed", p.initial_drive_speed);
+        validate_fields("TorsionalRig", p, TorsionalRigParams::fields());
         return p;
     }
 

@@ -1,0 +1,297 @@
+"""The rig kinds of the scenario schema: one :class:`RigKind` per ``rig.type``, registered in :data:`RIG_KINDS`.
+
+A rig kind owns what differs between rigs: its [rig] keys (read from the engine class), how the rig object is
+built from a :class:`~frictionsim.scenario.RigSpec`, its analysis (:mod:`frictionsim.scenario.analyses`: the mean
+friction over vibration cycles, or the limit cycle), its time-series columns, its plots, and the friction types
+only it runs. The parser and the runner ask the registry; nothing else branches on the rig type.
+
+Friction types (:func:`friction_types`): the engine's laws of :func:`frictionsim.laws.law_classes` ("coulomb",
+"stribeck", "dahl", "lugre", "elasto_plastic"), whose keys are their constructors' parameters, then the types of
+the rig kinds (the torsional rig's "hysteretic" and "fig7").
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, Mapping, Optional, Tuple
+
+import numpy as np
+
+from .. import _core, laws
+from ..torsional import fig7_friction
+from .analyses import CYCLE_MEAN, LIMIT_CYCLE, Analysis
+from .text import article, join
+
+__all__ = ["LawKind", "PLOTS", "RIG_KINDS", "RigKind", "TORSIONAL_PLOTS", "friction_type", "friction_types",
+           "plots_of", "rig_kind"]
+
+
+@dataclass(frozen=True)
+class LawKind:
+    """A scenario ``friction.type``: the callable that makes the law from the keys given, and its parameters."""
+
+    key: str
+    label: str  #: the class name, e.g. "Dahl"
+    make: Callable[..., Any]
+    rig: Optional[str] = None  #: the only rig kind that runs it (None: every kind)
+    origin: str = ""  #: where the law comes from, in the error that refuses it on another rig
+    #: array parameter -> its elements and their units (in the error for a wrong length)
+    arrays: Mapping[str, str] = field(default_factory=dict)
+    #: a name the engine's errors give -> the key it was written under
+    aliases: Mapping[str, str] = field(default_factory=dict)
+
+    @property
+    def parameters(self) -> Tuple[laws.Parameter, ...]:
+        """The keyword parameters of :attr:`make` (name, default, required, value kind)."""
+        return laws.parameters(self.make)
+
+
+class RigKind:
+    """One rig type of the schema. The defaults here serve a rig that has no vibration period of its own."""
+
+    name: str  #: the rig.type string
+    engine: type  #: the frictionsim class
+    analysis: Analysis
+    plots: Tuple[str, ...] = ()  #: the plots its cases can draw
+    own_laws: Tuple[LawKind, ...] = ()  #: friction types only this kind runs
+    lubricant = False  #: whether a case may name a lubricant (paper 000's Table 5 power law in the summary)
+    torsional = False  #: paper 001's torsional rig (Case.torsional)
+
+    @functools.cached_property
+    def keys(self) -> Dict[str, type]:
+        """[rig] key -> value type, in the engine's order: its constructor's keyword parameters."""
+        return {p.name: p.kind for p in laws.parameters(self.engine)}
+
+    @functools.cached_property
+    def defaults(self) -> Dict[str, Any]:
+        """[rig] key -> the engine's default."""
+        return {p.name: p.default for p in laws.parameters(self.engine)}
+
+    def describe(self, spec) -> str:
+        """The rig in words, e.g. "an axial rig"."""
+        return f"{article(self.name)} {self.name} rig"
+
+    def check(self, parser, params: Dict[str, Any], paths: Dict[str, str], path: str) -> Optional[Tuple]:
+        """Rules across the keys of a [rig] table (raise ``parser.error``); returns the recorded samples the rig
+        is driven by, if any."""
+        return None
+
+    def build(self, spec, friction):
+        """The rig object of ``spec`` (a RigSpec) with the law object ``friction``."""
+        return self.engine(friction, **spec.params)
+
+    def harmonic(self, spec) -> bool:
+        """Whether the rig vibrates harmonically, with period :meth:`vibration_period`."""
+        return False
+
+    def vibration_period(self, spec) -> Optional[float]:
+        """1/f [s] of a harmonic rig, else None."""
+        return None
+
+    def velocity_ratio(self, run) -> float:
+        """v_a / v_d [-] of a run (eqs 16-17), NaN where it has none."""
+        return math.nan
+
+    def columns(self, run) -> Dict[str, np.ndarray]:
+        """The time-series columns after the states (and before mode) of a run."""
+        return {"friction_force": run.result.friction_force}
+
+
+class Axial(RigKind):
+    """Paper 000's vibrating-sliding rig (:class:`frictionsim.AxialVibrationRig`); all keys optional."""
+
+    name, engine, analysis = "axial", _core.AxialVibrationRig, CYCLE_MEAN
+    plots = ("friction_force", "hysteresis", "drive_force")
+    lubricant = True
+
+    def build(self, spec, friction):
+        return self.engine(friction=friction, **spec.params)
+
+    def harmonic(self, spec) -> bool:
+        return True
+
+    def vibration_period(self, spec) -> float:
+        return 1.0 / float(spec.params.get("frequency", self.defaults["frequency"]))
+
+    def velocity_ratio(self, run) -> float:
+        v_a, v_d = float(run.rig.vibration_velocity_amplitude), float(run.rig.sliding_velocity)
+        return v_a / v_d if v_d > 0 else math.nan
+
+    def columns(self, run) -> Dict[str, np.ndarray]:
+        """surface_position [m], surface_velocity [m/s], relative_displacement [m], relative_velocity [m/s],
+        friction_force [N], drive_force [N]."""
+        r, rig, t = run.result, run.rig, run.result.t
+        surface = float(rig.amplitude) * np.sin(2 * math.pi * float(rig.frequency) * t)
+        velocity = np.asarray(rig.surface_velocity(t), dtype=float)
+        return {"surface_position": surface, "surface_velocity": velocity,
+                "relative_displacement": r["position"] - surface, "relative_velocity": r["velocity"] - velocity,
+                "friction_force": r.friction_force,
+                "drive_force": np.asarray(rig.drive_force(t, r["position"]), dtype=float)}
+
+
+class Kinematic(RigKind):
+    """A law driven by a prescribed relative velocity (:class:`frictionsim.KinematicRig`): normal_force and either
+    the harmonic v_r = v_d - v_a cos(2 pi f t) of :meth:`frictionsim.KinematicRig.harmonic` or a velocity_file."""
+
+    name, engine, analysis = "kinematic", _core.KinematicRig, CYCLE_MEAN
+    plots = ("friction_force", "hysteresis")
+    lubricant = True
+
+    @functools.cached_property
+    def harmonic_keys(self) -> Tuple[str, ...]:
+        """The keys of the harmonic velocity: sliding_velocity, velocity_amplitude, frequency."""
+        return tuple(p.name for p in laws.parameters(self.engine.harmonic, ("friction", "normal_force",
+                                                                            "initial_state")))
+
+    @functools.cached_property
+    def keys(self) -> Dict[str, type]:
+        return {"normal_force": float, **{key: float for key in self.harmonic_keys}, "velocity_file": str}
+
+    def describe(self, spec) -> str:
+        return super().describe(spec) + (" with a velocity_file" if "velocity_file" in spec.params else "")
+
+    def check(self, parser, params, paths, path):
+        if "normal_force" not in params:
+            raise parser.error(join(path, "normal_force"), "missing required value for a kinematic rig")
+        given = [k for k in self.harmonic_keys if k in params]
+        if "velocity_file" not in params:
+            for key in self.harmonic_keys:
+                if key not in params:
+                    raise parser.error(join(path, key), "missing required value for a kinematic rig (give "
+                                                        "sliding_velocity, velocity_amplitude and frequency, "
+                                                        "or velocity_file)")
+            return None
+        if given:
+            raise parser.error(paths[given[0]], "give either velocity_file or a harmonic velocity "
+                                                "(sliding_velocity, velocity_amplitude, frequency), not both")
+        for name in ("time", "relative_velocity", "value", "values"):  # what the engine's errors name
+            paths[name] = paths["velocity_file"]
+        return parser.samples(params["velocity_file"], paths["velocity_file"])
+
+    def build(self, spec, friction):
+        if spec.samples is not None:
+            return self.engine(friction, relative_velocity=spec.samples,
+                               normal_force=float(spec.params["normal_force"]))
+        return self.engine.harmonic(friction, **{k: float(v) for k, v in spec.params.items()})
+
+    def harmonic(self, spec) -> bool:
+        return "velocity_file" not in spec.params
+
+    def vibration_period(self, spec) -> Optional[float]:
+        return 1.0 / float(spec.params["frequency"]) if self.harmonic(spec) else None
+
+    def velocity_ratio(self, run) -> float:
+        if not self.harmonic(run.case.rig):
+            return math.nan
+        v_a, v_d = (float(run.case.rig.params[k]) for k in ("velocity_amplitude", "sliding_velocity"))
+        return v_a / v_d if v_d > 0 else math.nan
+
+    def columns(self, run) -> Dict[str, np.ndarray]:
+        """relative_displacement [m], relative_velocity [m/s] (the harmonic one, or the samples interpolated),
+        friction_force [N]."""
+        spec, t = run.case.rig, run.result.t
+        if spec.samples is None:
+            v_d, v_a, f = (float(spec.params[k]) for k in self.harmonic_keys)
+            omega = 2 * math.pi * f
+            displacement, velocity = v_d * t - v_a / omega * np.sin(omega * t), v_d - v_a * np.cos(omega * t)
+        else:
+            velocity = np.interp(t, *spec.samples)
+            displacement = np.concatenate([[0.0], np.cumsum(np.diff(t) * 0.5 * (velocity[1:] + velocity[:-1]))])
+        return {"relative_displacement": displacement, "relative_velocity": velocity,
+                "friction_force": run.result.friction_force}
+
+
+#: The elements of eq 6's coefficient arrays, in the order given, and their units.
+_EQ6_COEFFICIENTS = ("(c00, c10, c01, c20, c11, c02): N m, N m s/rad, kg m^2, N m s^2/rad^2, N m s^3/rad^2, "
+                     "N m s^4/rad^2")
+_EQ6_SUFFIXES = ("00", "10", "01", "20", "11", "02")
+
+
+class Torsional(RigKind):
+    """Paper 001's drill-string rig (:class:`frictionsim.TorsionalRig`), ``rig.type = "torsional"``.
+
+    * rig keys: the :class:`~frictionsim.TorsionalRig` keywords (:attr:`keys`, all optional, SI units);
+    * friction types "hysteretic" (:class:`~frictionsim.HystereticFriction`, paper 001 eq 6) and "fig7" (the eq 6
+      set of :func:`frictionsim.torsional.fig7_friction`), which only a torsional rig runs; the engine's other laws
+      (coulomb, stribeck, dahl, lugre, elasto_plastic) act at the rig's contact_radius;
+    * analysis: the limit cycle of the disc speed (:data:`frictionsim.scenario.analyses.LIMIT_CYCLE`) after
+      ``transient`` [s] (default t_end / 2), with ``stick_speed`` [rad/s] (default 0.01) the |w2| counted as
+      stuck, instead of the mean friction over vibration cycles;
+    * time series: t, the states, disc_acceleration, friction_torque, shaft_torque, voltage, mode.
+
+    Plots (``output.plots``; ``output.plot_window`` = [t_start, t_end] overrides every default window):
+
+    ``disc_speed``
+        disc speed w2 and drive (load-side motor) speed w3 against time, one panel per case (paper 001 Figs. 4a,
+        7a); default window: the last 10 s.
+    ``friction_torque_hysteresis``
+        the friction torque T_f2 against disc speed w2 (Fig. 5a), against disc acceleration dw2/dt (Fig. 5b), and
+        dw2/dt against w2 (Fig. 5c), over the limit cycle (default window: [transient, t_end]).
+    ``phase_portrait``
+        the phase portrait of the disc (Fig. 7b): disc speed w2 against the shaft twist th3 - th2, over the limit
+        cycle (default window: [transient, t_end]). The twist is the disc's position relative to the drive: in a
+        limit cycle both it and w2 are periodic, so the portrait closes (the absolute angle th2 grows without
+        bound; th2 - w_ref t is nearly the mirror image of the twist, since the PI loop holds th3 close to w_ref t).
+        Sticking shows as the flat stretch along w2 = 0, where the twist grows at w3 ~ w_ref until the
+        break-away torque is reached. The operating point (mean twist, w_ref) is marked: over whole cycles the
+        mean shaft torque equals the mean friction torque, so the mean twist is mean T_f2 / k2 (for steady
+        rotation, the equilibrium itself).
+    """
+
+    name, engine, analysis = "torsional", _core.TorsionalRig, LIMIT_CYCLE
+    plots = ("disc_speed", "friction_torque_hysteresis", "phase_portrait")
+    torsional = True
+    own_laws = (
+        LawKind("hysteretic", "HystereticFriction", _core.HystereticFriction, "torsional", "paper 001 eq 6",
+                arrays={"accelerating": _EQ6_COEFFICIENTS, "decelerating": _EQ6_COEFFICIENTS},
+                aliases={**{f"p{i}": "accelerating" for i in _EQ6_SUFFIXES},
+                         **{f"n{i}": "decelerating" for i in _EQ6_SUFFIXES}}),
+        LawKind("fig7", "HystereticFriction", fig7_friction, "torsional", "paper 001 eq 6"),
+    )
+
+    def columns(self, run) -> Dict[str, np.ndarray]:
+        """disc_acceleration [rad/s^2], friction_torque T_f2 [N m], shaft_torque S [N m], voltage V [V]."""
+        r, rig = run.result, run.rig
+        return {"disc_acceleration": np.asarray(rig.disc_acceleration(r.states, r.mode), dtype=float),
+                "friction_torque": r.friction_force,
+                "shaft_torque": np.asarray(rig.shaft_torque(r.states), dtype=float),
+                "voltage": np.asarray(rig.voltage(r.states), dtype=float)}
+
+
+#: rig.type -> its kind, in the order the schema lists them
+RIG_KINDS: Dict[str, RigKind] = {kind.name: kind for kind in (Axial(), Kinematic(), Torsional())}
+
+
+def rig_kind(name: str) -> RigKind:
+    """The registered kind of rig type ``name`` (KeyError naming the types there are)."""
+    try:
+        return RIG_KINDS[name]
+    except KeyError:
+        raise KeyError(f"unknown rig type {name!r} (known: {', '.join(RIG_KINDS)})") from None
+
+
+@functools.lru_cache(maxsize=None)
+def friction_types() -> Dict[str, LawKind]:
+    """friction.type -> :class:`LawKind`: the engine's laws (:func:`frictionsim.laws.law_classes`), then those of
+    the rig kinds."""
+    types = {key: LawKind(key, cls.__name__, cls) for key, cls in laws.law_classes().items()}
+    types.update((law.key, law) for kind in RIG_KINDS.values() for law in kind.own_laws)
+    return types
+
+
+def friction_type(key: str) -> LawKind:
+    """The :class:`LawKind` of friction type ``key``."""
+    return friction_types()[key]
+
+
+def plots_of(analysis: Analysis) -> Tuple[str, ...]:
+    """The plots a file of rigs with ``analysis`` may ask for: those of every kind that has it, in order."""
+    return tuple(dict.fromkeys(plot for kind in RIG_KINDS.values() if kind.analysis is analysis
+                               for plot in kind.plots))
+
+
+#: The plots of axial and kinematic rigs, and of torsional ones.
+PLOTS = plots_of(CYCLE_MEAN)
+TORSIONAL_PLOTS = plots_of(LIMIT_CYCLE)
