@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "simulation.hpp"
+#include "table_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -47,7 +48,7 @@ AxialVibrationRig make_rig(py::handle friction, double mass, double drive_stiffn
 
 void register_axial(py::module_& m) {
     const AxialRigParams d;
-    py::class_<AxialVibrationRig>(m, "AxialVibrationRig", R"doc(
+    static const std::string doc = R"doc(
 The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
 k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:
 
@@ -62,35 +63,21 @@ friction_impulse [N s], friction_work [J], drive_work [J] (drive work = energy c
 Parameters
 ----------
 friction : a friction law (any class of fs.FRICTION_LAWS)
-mass : float            m [kg], > 0
-drive_stiffness : float k_d [N/m], > 0
-sliding_velocity : float v_d [m/s], >= 0
-amplitude : float       u0 [m], >= 0
-frequency : float       f [Hz], > 0
-normal_force : float    F_N [N], > 0
-gravity : bool          vertical rig: F_g = m g opposes the sliding
-gravitational_acceleration : float  g [m/s^2]
-initial_position : float, optional  x(0) [m]; default 0, or -m g / k_d with gravity (spring carries the weight)
-initial_velocity : float            x'(0) [m/s]
-)doc")
-        .def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("mass") = d.mass,
+gravity : bool = False
+    Vertical rig: F_g = m g opposes the sliding.
+initial_position : float, optional
+    x(0) [m]; default 0, or -m g / k_d with gravity (the spring carries the weight).
+)doc" + keywords_doc(AxialRigParams::fields());
+    py::class_<AxialVibrationRig> cls(m, "AxialVibrationRig", doc.c_str());
+    cls.def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("mass") = d.mass,
              py::arg("drive_stiffness") = d.drive_stiffness, py::arg("sliding_velocity") = d.sliding_velocity,
              py::arg("amplitude") = d.amplitude, py::arg("frequency") = d.frequency,
              py::arg("normal_force") = d.normal_force, py::arg("gravity") = d.gravity,
              py::arg("gravitational_acceleration") = d.gravitational_acceleration,
              py::arg("initial_position") = py::none(), py::arg("initial_velocity") = d.initial_velocity)
         .def_property_readonly("friction", [](const AxialVibrationRig& r) { return friction_law_to_python(r.friction); })
-        .def_property_readonly("mass", [](const AxialVibrationRig& r) { return r.params.mass; })
-        .def_property_readonly("drive_stiffness", [](const AxialVibrationRig& r) { return r.params.drive_stiffness; })
-        .def_property_readonly("sliding_velocity", [](const AxialVibrationRig& r) { return r.params.sliding_velocity; })
-        .def_property_readonly("amplitude", [](const AxialVibrationRig& r) { return r.params.amplitude; })
-        .def_property_readonly("frequency", [](const AxialVibrationRig& r) { return r.params.frequency; })
-        .def_property_readonly("normal_force", [](const AxialVibrationRig& r) { return r.params.normal_force; })
         .def_property_readonly("gravity", [](const AxialVibrationRig& r) { return r.params.gravity; })
-        .def_property_readonly("gravitational_acceleration",
-                               [](const AxialVibrationRig& r) { return r.params.gravitational_acceleration; })
         .def_property_readonly("initial_position", [](const AxialVibrationRig& r) { return r.params.initial_position; })
-        .def_property_readonly("initial_velocity", [](const AxialVibrationRig& r) { return r.params.initial_velocity; })
         .def_property_readonly("period", [](const AxialVibrationRig& r) { return 1.0 / r.params.frequency; },
                                "Vibration period 1/f [s].")
         .def_property_readonly("vibration_velocity_amplitude",
@@ -115,26 +102,18 @@ initial_velocity : float            x'(0) [m/s]
         })
         .def("__reduce__", [](py::handle self) {
             const auto& r = self.cast<const AxialVibrationRig&>();
-            const AxialRigParams& p = r.params;
-            return reduce_by_construction(
-                self, py::make_tuple(friction_law_to_python(r.friction)),
-                py::dict(py::arg("mass") = p.mass, py::arg("drive_stiffness") = p.drive_stiffness,
-                         py::arg("sliding_velocity") = p.sliding_velocity, py::arg("amplitude") = p.amplitude,
-                         py::arg("frequency") = p.frequency, py::arg("normal_force") = p.normal_force,
-                         py::arg("gravity") = p.gravity, py::arg("gravitational_acceleration") = p.gravitational_acceleration,
-                         py::arg("initial_position") = p.initial_position, py::arg("initial_velocity") = p.initial_velocity));
+            py::dict kwargs = field_keywords(r.params, AxialRigParams::fields());
+            kwargs["gravity"] = r.params.gravity;
+            kwargs["initial_position"] = r.params.initial_position;
+            return reduce_by_construction(self, py::make_tuple(friction_law_to_python(r.friction)), kwargs);
         })
         .def("__repr__", [](const AxialVibrationRig& r) {
-            const AxialRigParams& p = r.params;
             return "AxialVibrationRig(friction=" + std::string(py::repr(friction_law_to_python(r.friction))) +
-                   ", mass=" + std::string(py::str(py::float_(p.mass))) +
-                   ", drive_stiffness=" + std::string(py::str(py::float_(p.drive_stiffness))) +
-                   ", sliding_velocity=" + std::string(py::str(py::float_(p.sliding_velocity))) +
-                   ", amplitude=" + std::string(py::str(py::float_(p.amplitude))) +
-                   ", frequency=" + std::string(py::str(py::float_(p.frequency))) +
-                   ", normal_force=" + std::string(py::str(py::float_(p.normal_force))) +
-                   ", gravity=" + (p.gravity ? "True" : "False") + ")";
+                   changed_fields_repr(r.params, AxialRigParams::fields()) + (r.params.gravity ? ", gravity=True" : "") +
+                   (r.params.initial_position ? ", initial_position=" + format_double(*r.params.initial_position) : "") +
+                   ")";
         });
+    def_field_properties(cls, AxialRigParams::fields(), [](const AxialVibrationRig& r) -> const AxialRigParams& { return r.params; });
 }
 
 }  // namespace frictionsim::python

@@ -12,6 +12,8 @@
 
 #include <frictionsim/frictionsim.hpp>
 
+#include "callable_law.hpp"
+
 namespace frictionsim::python {
 
 namespace py = pybind11;
@@ -26,14 +28,16 @@ void require_constructed(py::handle self);
 py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwargs = py::dict(),
                                  const char* factory = "");
 
-/// Every instantaneous friction law a rig can run with. One variant alternative per law: the rigs are
-/// instantiated once per law, the right-hand side stays free of virtual calls.
-using FrictionLaw = variant_of<EngineLaws>::type;
+/// Every instantaneous friction law a rig can run with: the engine's laws and the Python-defined CallableLaw. One
+/// variant alternative per law: the rigs are instantiated once per law, the right-hand side stays free of virtual
+/// calls.
+using PythonLaws = append<EngineLaws, CallableLaw>::type;
+using FrictionLaw = variant_of<PythonLaws>::type;
 
 /// The Python object (a bound law) -> the variant; TypeError naming `parameter` for anything else.
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter);
 py::object friction_law_to_python(const FrictionLaw& law);
-/// Is `law` an instance of one of EngineLaws' classes?
+/// Is `law` an instance of one of PythonLaws' classes?
 bool is_engine_law(py::handle law);
 /// "Coulomb, Stribeck, ... or ElastoPlastic" (with `extra` as the last name when given), for error messages.
 std::string engine_law_names(const char* extra = nullptr);

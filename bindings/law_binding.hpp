@@ -15,74 +15,9 @@
 #include <type_traits>
 #include <utility>
 
-#include "common.hpp"
+#include "table_binding.hpp"
 
 namespace frictionsim::python {
-
-/// A parameter's description as Python sees it (fs.Parameter): from a Field of a parameter table.
-struct ParameterInfo {
-    std::string name, field, symbol, unit, rule, doc;
-    double lower, upper;
-    bool lower_open, upper_open, unset_allowed, required;
-    std::optional<std::string> at_least;  ///< public name of the field bounding this one from below
-    std::optional<double> default_value;   ///< None when required or unset by default
-    double example;                        ///< the C++ Params default: a typical value, also for required ones
-};
-
-std::string format_double(double v);
-
-/// Text that pybind11 keeps a pointer to (docstrings, default descriptions) lives as long as the module.
-inline const char* kept(std::string text) {
-    static std::deque<std::string> store;
-    return store.emplace_back(std::move(text)).c_str();
-}
-
-/// The field that bounds `f` from below (its rule's at_least), or nullptr.
-template <class P, std::size_t N>
-const Field<P>* bound_field(const Field<P>& f, const std::array<Field<P>, N>& fields) {
-    if (f.rule.at_least)
-        for (const Field<P>& other : fields)
-            if (std::string(other.name) == f.rule.at_least) return &other;
-    return nullptr;
-}
-
-/// The rule in words with Python's names (">= mu", not ">= coulomb_coefficient").
-template <class P, std::size_t N>
-std::string public_rule(const Field<P>& f, const std::array<Field<P>, N>& fields) {
-    const Field<P>* bound = bound_field(f, fields);
-    return f.rule.text(bound ? bound->public_name() : nullptr);
-}
-
-template <class P, std::size_t N>
-py::tuple parameter_infos(const std::array<Field<P>, N>& fields) {
-    const P defaults{};
-    py::tuple out(N);
-    for (std::size_t i = 0; i < N; ++i) {
-        const Field<P>& f = fields[i];
-        ParameterInfo info{f.public_name(), f.name, f.symbol, f.unit, public_rule(f, fields), f.doc,
-                           f.rule.lower, f.rule.upper, f.rule.lower_open, f.rule.upper_open,
-                           f.rule.unset_allowed, f.required, std::nullopt, std::nullopt, defaults.*(f.member)};
-        if (f.rule.at_least) info.at_least = bound_field(f, fields)->public_name();
-        const double d = defaults.*(f.member);
-        if (!f.required && !std::isnan(d)) info.default_value = d;
-        out[i] = py::cast(std::move(info));
-    }
-    return out;
-}
-
-/// Rethrows an InvalidParameter of `fields` under the field's public name: "LuGre: mu (coulomb_coefficient) must ...".
-template <class P, std::size_t N>
-[[noreturn]] void rethrow_with_public_name(const InvalidParameter& e, const std::array<Field<P>, N>& fields) {
-    for (const Field<P>& f : fields) {
-        if (e.parameter() != f.name || f.key == nullptr) continue;
-        std::string message = e.what();
-        const std::string needle = std::string(": ") + f.name + " must";
-        if (const auto at = message.find(needle); at != std::string::npos)
-            message.replace(at, needle.size(), std::string(": ") + f.key + " (" + f.name + ") must");
-        throw InvalidParameter(f.key, message);
-    }
-    throw e;
-}
 
 namespace law_binding {
 
@@ -168,13 +103,8 @@ py::class_<Law> bind_law(py::module_& m) {
     py::class_<Law> cls(m, Law::name, doc.c_str());
     constexpr std::size_t n = std::tuple_size<std::decay_t<decltype(Law::fields)>>::value;
     law_binding::def_init(cls, std::make_index_sequence<n>{});
-    for (const auto& f : Law::fields) {
-        const auto member = f.member;
-        cls.def_property_readonly(f.public_name(), [member](const Law& law) { return law.params().*member; },
-                                  kept(std::string(f.symbol) + " [" + f.unit + "]: " + f.doc));
-    }
+    def_field_properties(cls, Law::fields, [](const Law& law) { return law.params(); });
     cls.attr("key") = Law::key;
-    cls.attr("parameters") = parameter_infos(Law::fields);
     cls.attr("has_stick") = Law::has_stick;
     cls.attr("stiff") = declares_stiff<Law>::value;
     py::tuple states(Law::state_count);

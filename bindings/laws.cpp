@@ -64,7 +64,7 @@ void def_law_methods(py::class_<ElastoPlastic>& c) {
 
 std::string engine_law_names(const char* extra) {
     std::vector<std::string> names;
-    for_each_type(EngineLaws{}, [&](auto tag) { names.emplace_back(decltype(tag)::type::name); });
+    for_each_type(PythonLaws{}, [&](auto tag) { names.emplace_back(decltype(tag)::type::name); });
     if (extra) names.emplace_back(extra);
     std::string out;
     for (std::size_t i = 0; i < names.size(); ++i)
@@ -74,14 +74,14 @@ std::string engine_law_names(const char* extra) {
 
 bool is_engine_law(py::handle law) {
     bool found = false;
-    for_each_type(EngineLaws{}, [&](auto tag) { found = found || py::isinstance<typename decltype(tag)::type>(law); });
+    for_each_type(PythonLaws{}, [&](auto tag) { found = found || py::isinstance<typename decltype(tag)::type>(law); });
     return found;
 }
 
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter) {
     require_constructed(law);
     std::optional<FrictionLaw> out;
-    for_each_type(EngineLaws{}, [&](auto tag) {
+    for_each_type(PythonLaws{}, [&](auto tag) {
         using Law = typename decltype(tag)::type;
         if (!out && py::isinstance<Law>(law)) out = law.cast<Law>();
     });

@@ -61,6 +61,7 @@ PYBIND11_MODULE(_core, m) {
     }, "Unpickling: cls(*args, **kwargs), or cls.<factory>(...), through the validating constructor.");
     register_errors(m);
     register_laws(m);
+    register_callable_law(m);
     register_results(m);
     register_axial(m);
     register_kinematic(m);

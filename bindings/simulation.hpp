@@ -27,21 +27,24 @@ std::shared_ptr<Result> simulate_variant(const RigVariant& rig, double t_end, co
     try {
         py::gil_scoped_release release;
         return std::visit(
-            [&](const auto& system) { return std::make_shared<Result>(simulate(system, t_end, polled, t_start)); },
+            [&](const auto& system) {
+                resolve_callable_law_method(system, polled);  // CallableLaw(stiff=True): automatic is CVODE BDF
+                return std::make_shared<Result>(simulate(system, t_end, polled, t_start));
+            },
             rig);
     } catch (const Interrupted&) {
         raise_pending_python_error();
     }
 }
 
-/// One rig type per law of a list: std::variant<Rig<Coulomb>, Rig<Stribeck>, ...> (EngineLaws by default).
+/// One rig type per law of a list: std::variant<Rig<Coulomb>, Rig<Stribeck>, ...> (PythonLaws by default).
 template <template <class> class Rig, class Laws>
 struct rig_variant;
 template <template <class> class Rig, class... Law>
 struct rig_variant<Rig, TypeList<Law...>> {
     using type = std::variant<Rig<Law>...>;
 };
-template <template <class> class Rig, class Laws = EngineLaws>
+template <template <class> class Rig, class Laws = PythonLaws>
 using RigVariant = typename rig_variant<Rig, Laws>::type;
 
 }  // namespace frictionsim::python

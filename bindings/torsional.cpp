@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "simulation.hpp"
+#include "table_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -43,7 +44,7 @@ std::string format(double v) {
 }
 
 /// The engine's laws and paper 001's eq 6, which only the disc (and the kinematic rig) can carry.
-using TorsionalLaws = append<EngineLaws, HystereticFriction>::type;
+using TorsionalLaws = append<PythonLaws, HystereticFriction>::type;
 using TorsionalLaw = variant_of<TorsionalLaws>::type;
 using TorsionalVariant = RigVariant<TorsionalRig, TorsionalLaws>;
 
@@ -56,33 +57,7 @@ TorsionalLaw torsional_law_from_python(py::handle law) {
                          std::string(py::str(py::type::of(law).attr("__name__"))));
 }
 
-/// The fields of TorsionalRigParams in keyword order: one table for init, properties, pickling and repr.
-struct Field {
-    const char* name;
-    double TorsionalRigParams::*member;
-    const char* doc;
-};
-constexpr Field fields[] = {
-    {"disc_inertia", &TorsionalRigParams::disc_inertia, "J2 [kg m^2] (Table 1)"},
-    {"shaft_stiffness", &TorsionalRigParams::shaft_stiffness, "k2 [N m/rad] (Table 1)"},
-    {"shaft_damping", &TorsionalRigParams::shaft_damping, "d2 [N m s/rad] (Table 1)"},
-    {"motor_inertia", &TorsionalRigParams::motor_inertia, "J_m [kg m^2] at the motor shaft (Table 1's J3 / eta^2)"},
-    {"gear_ratio", &TorsionalRigParams::gear_ratio, "eta [-] (eq 4)"},
-    {"inductance", &TorsionalRigParams::inductance, "L [H] (Table 2)"},
-    {"resistance", &TorsionalRigParams::resistance, "R [Ohm] (Table 2)"},
-    {"torque_constant", &TorsionalRigParams::torque_constant, "K_T [N m/A] (Table 2)"},
-    {"back_emf_constant", &TorsionalRigParams::back_emf_constant, "K_E [V s/rad] (Table 2)"},
-    {"motor_friction_torque", &TorsionalRigParams::motor_friction_torque, "T_f [N m] at the motor shaft (Table 2)"},
-    {"motor_viscous_coefficient", &TorsionalRigParams::motor_viscous_coefficient, "C_m [N m s/rad] (Table 2)"},
-    {"proportional_gain", &TorsionalRigParams::proportional_gain, "k_p [V s/rad] (Table 2)"},
-    {"integral_gain", &TorsionalRigParams::integral_gain, "k_i [V/rad] (Table 2)"},
-    {"reference_speed", &TorsionalRigParams::reference_speed, "w_ref [rad/s], load side (eq 3)"},
-    {"normal_force", &TorsionalRigParams::normal_force, "N2 [N] on the disc"},
-    {"contact_radius", &TorsionalRigParams::contact_radius, "r [m]: v_r = r w2, T = r F for the engine's laws"},
-    {"initial_disc_speed", &TorsionalRigParams::initial_disc_speed, "w2(0) [rad/s]"},
-    {"initial_drive_speed", &TorsionalRigParams::initial_drive_speed, "w3(0) [rad/s]"},
-};
-constexpr std::size_t field_count = sizeof(fields) / sizeof(fields[0]);
+constexpr auto fields = TorsionalRigParams::fields();
 
 struct TorsionalDrillStringRig {
     TorsionalLaw friction;
@@ -99,22 +74,12 @@ struct TorsionalDrillStringRig {
 
 TorsionalDrillStringRig make_rig(py::handle friction, const py::kwargs& kwargs) {
     TorsionalRigParams p;
-    std::size_t used = 0;
-    for (const Field& f : fields) {
-        if (!kwargs.contains(f.name)) continue;
-        const py::handle value = kwargs[f.name];
-        if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value) &&
-            !py::hasattr(value, "__float__"))
-            throw py::type_error(std::string("TorsionalRig: ") + f.name + " must be a number (got " +
-                                 std::string(py::str(py::type::of(value).attr("__name__"))) + ")");
-        p.*f.member = value.attr("__float__")().cast<double>();
-        ++used;
-    }
+    const std::size_t used = read_field_keywords(p, kwargs, fields, "TorsionalRig");
     if (used != kwargs.size()) {
         for (auto item : kwargs) {
             const std::string key = py::str(item.first);
             bool known = false;
-            for (const Field& f : fields) known = known || key == f.name;
+            for (const auto& f : fields) known = known || key == f.name;
             if (!known) throw py::type_error("TorsionalRig() got an unexpected keyword argument '" + key + "'");
         }
     }
@@ -268,15 +233,11 @@ T_f2 [N m]; its mode is the disc's (minus 16 while the motor sticks, minus 32 wh
 Keywords
 --------
 )doc";
-    const TorsionalRigParams defaults;
-    for (const Field& f : fields) doc += std::string(f.name) + " : float = " + format(defaults.*f.member) + "\n    " + f.doc + "\n";
+    doc += keywords_doc(fields);
 
     auto cls = py::class_<TorsionalDrillStringRig>(m, "TorsionalRig", doc.c_str());
     cls.def(py::init(&make_rig), py::arg("friction"));
-    for (const Field& f : fields) {
-        const auto member = f.member;
-        cls.def_property_readonly(f.name, [member](const TorsionalDrillStringRig& r) { return r.params.*member; }, f.doc);
-    }
+    def_field_properties(cls, fields, [](const TorsionalDrillStringRig& r) -> const TorsionalRigParams& { return r.params; });
     cls.def_property_readonly("friction", [](const TorsionalDrillStringRig& r) { return law_to_python(r.friction); })
         .def_property_readonly("period", [](const TorsionalDrillStringRig&) { return py::none(); },
                                "None: the rig has no imposed period (its stick-slip period is an outcome).")
@@ -311,18 +272,12 @@ Keywords
         })
         .def("__reduce__", [](py::handle self) {
             const auto& r = self.cast<const TorsionalDrillStringRig&>();
-            py::dict params;
-            for (const Field& f : fields) params[f.name] = r.params.*f.member;
-            return reduce_by_construction(self, py::make_tuple(law_to_python(r.friction)), params);
+            return reduce_by_construction(self, py::make_tuple(law_to_python(r.friction)), field_keywords(r.params, fields));
         })
         .def("__repr__", [](const TorsionalDrillStringRig& r) {
-            std::string out = "TorsionalRig(friction=" + std::string(py::repr(law_to_python(r.friction)));
-            const TorsionalRigParams d;
-            for (const Field& f : fields)
-                if (r.params.*f.member != d.*f.member) out += ", " + std::string(f.name) + "=" + format(r.params.*f.member);
-            return out + ")";
+            return "TorsionalRig(friction=" + std::string(py::repr(law_to_python(r.friction))) +
+                   changed_fields_repr(r.params, fields) + ")";
         });
-    (void)field_count;
 }
 
 }  // namespace frictionsim::python

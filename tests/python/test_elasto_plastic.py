@@ -161,10 +161,13 @@ def test_bad_parameters_are_value_errors_naming_the_parameter(changes, parameter
 
 
 def test_rigs_refuse_other_objects_naming_the_law():
-    with pytest.raises(TypeError, match="LuGre or ElastoPlastic"):
+    with pytest.raises(TypeError, match="must be a friction law") as kinematic:
         fs.KinematicRig(1.0, relative_velocity=1e-3, normal_force=N)
-    with pytest.raises(TypeError, match="ElastoPlastic or HystereticFriction"):
+    with pytest.raises(TypeError, match="or HystereticFriction") as torsional:
         fs.TorsionalRig("elasto_plastic")
+    for info in (kinematic, torsional):  # the engine's list of laws, ElastoPlastic among them
+        assert all(law.__name__ in str(info.value) for law in fs.FRICTION_LAWS)
+        assert "ElastoPlastic" in str(info.value)
 
 
 # --------------------------------------------------------------------------------- independent SciPy model
@@ -389,8 +392,8 @@ def test_scenario_case_runs_the_law_and_its_mean_equals_direct_simulation():
     ("breakaway_fraction = 0.5", "breakaway_fraction = 1.0", "case[2].friction.breakaway_fraction", "[0, 1)"),
     ("viscous_damping = 2.0 }", "viscous_damping = 2.0, breakaway_fraction = 0.5 }",  # the lugre case
      "case[1].friction.breakaway_fraction", "unknown key for a lugre law"),
-    ('type = "elasto_plastic"', 'type = "elastoplastic"', "case[2].friction.type", "lugre, elasto_plastic, "
-                                                                                   "hysteretic, fig7"),
+    ('type = "elasto_plastic"', 'type = "elastoplastic"', "case[2].friction.type", "must be one of coulomb, stribeck, "
+                                                                                   "dahl, lugre, elasto_plastic, "),
 ])
 def test_bad_scenario_names_the_key(old, new, key, rule):
     text = KINEMATIC.replace(old, new, 1)

@@ -192,7 +192,7 @@ BAD = [
     ("eq 6 on an axial rig", 'rig = { type = "axial" }\nfriction = { type = "fig7" }\nsolver = { t_end = 1.0 }\n',
      "friction.type", "runs only on a torsional rig"),
     ("unknown friction type", TEXT.replace('type = "hysteretic"', 'type = "hysteresis"'), "case[1].friction.type",
-     "must be one of coulomb, stribeck, dahl, lugre, elasto_plastic, hysteretic, fig7"),
+     "must be one of " + ", ".join([law.key for law in fs.FRICTION_LAWS] + ["hysteretic", "fig7"])),
 ]
 
 

@@ -12,6 +12,10 @@
 // branch +-1's force, 0 stick from the start of the run (a set-valued law then holds no force). In stick the
 // guard fires when |v_r| exceeds the smallest normal double, so no guard sits at zero through a standstill: one
 // that did would fire again at every step of it (chattering).
+//
+// Paper 001's hysteretic torque (eq 6) is no FrictionLaw (it depends on the acceleration dw/dt): it has its own
+// partial specialization, KinematicRig<HystereticFriction, V, N> in kinematic_hysteretic.hpp (included at the end
+// of this header), which takes dw/dt from the signal's derivative(t).
 #pragma once
 
 #include <algorithm>
@@ -182,3 +186,5 @@ private:
 };
 
 }  // namespace frictionsim
+
+#include "kinematic_hysteretic.hpp"  // KinematicRig<HystereticFriction, V, N>
