@@ -20,18 +20,10 @@ from . import _core
 
 __all__ = ["Parameter", "UnknownLawError", "law_class", "law_classes", "parameters"]
 
-#: key -> class name in frictionsim._core: for an engine built before it exported FRICTION_LAWS
-_ENGINE_LAWS = (("coulomb", "Coulomb"), ("stribeck", "Stribeck"), ("dahl", "Dahl"), ("lugre", "LuGre"),
-                ("elasto_plastic", "ElastoPlastic"))
-
-
 def law_classes() -> Dict[str, type]:
     """Law key -> engine class, e.g. ``{"coulomb": frictionsim.Coulomb, ..., "elasto_plastic": ...}``: the
     engine's registry ``frictionsim._core.FRICTION_LAWS`` (each class's ``key``), in its order."""
-    registry = getattr(_core, "FRICTION_LAWS", None)
-    if registry:
-        return {cls.key: cls for cls in registry}
-    return {key: getattr(_core, name) for key, name in _ENGINE_LAWS}
+    return {cls.key: cls for cls in _core.FRICTION_LAWS}
 
 
 class UnknownLawError(KeyError, ValueError):

@@ -9,6 +9,7 @@
 #include "coulomb.hpp"
 #include "dahl.hpp"
 #include "elasto_plastic.hpp"
+#include "gms.hpp"
 #include "lugre.hpp"
 #include "stribeck.hpp"
 
@@ -46,6 +47,6 @@ struct append<TypeList<T...>, More...> {
 };
 
 /// The engine's instantaneous friction laws, in the order Python lists them.
-using EngineLaws = TypeList<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic>;
+using EngineLaws = TypeList<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip>;
 
 }  // namespace frictionsim
