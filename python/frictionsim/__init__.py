@@ -21,6 +21,7 @@ from ._core import (
     table5,
     vibration_velocity_amplitude,
 )
+from ._core import CallableLaw  # a friction law written in Python (not in FRICTION_LAWS)
 from .errors import AccuracyWarning, BudgetExceededError, ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
 from .simulation import METHODS, SOLVER_DEFAULTS, simulate
@@ -36,6 +37,7 @@ __all__ = [
     "AccuracyWarning",
     "AxialVibrationRig",
     "BudgetExceededError",
+    "CallableLaw",
     "ChatteringError",
     "HystereticFriction",
     "Event",

@@ -24,7 +24,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "../solve/hybrid_system.hpp"  // detail::detected, declares_stiff
+#include "../detail/traits.hpp"
 
 namespace frictionsim {
 

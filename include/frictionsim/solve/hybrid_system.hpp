@@ -40,15 +40,11 @@
 #include <type_traits>
 #include <utility>
 
+#include "../detail/traits.hpp"
+
 namespace frictionsim {
 
 namespace detail {
-/// C++17 detection idiom: is Op<T> well-formed?
-template <class, template <class> class Op, class = void>
-struct detected : std::false_type {};
-template <class T, template <class> class Op>
-struct detected<T, Op, std::void_t<Op<T>>> : std::true_type {};
-
 template <class S> using state_size_t = decltype(std::integral_constant<std::size_t, S::state_size>{});
 template <class S> using guard_count_t = decltype(std::integral_constant<std::size_t, S::guard_count>{});
 template <class S> using rhs_t = decltype(std::declval<const S&>().rhs(0.0, std::declval<const double*>(), 0,
