@@ -42,6 +42,13 @@ bool is_engine_law(py::handle law);
 /// "Coulomb, Stribeck, ... or ElastoPlastic" (with `extra` as the last name when given), for error messages.
 std::string engine_law_names(const char* extra = nullptr);
 
+/// The laws and paper 001's eq 6 (acceleration-dependent): what the rigs that can carry eq 6 take (the torsional
+/// disc, the kinematic rig with a prescribed speed and its derivative).
+using LawsAndHysteretic = append<PythonLaws, HystereticFriction>::type;
+using LawOrHysteretic = variant_of<LawsAndHysteretic>::type;
+LawOrHysteretic law_or_hysteretic_from_python(py::handle law, const char* parameter);
+py::object law_or_hysteretic_to_python(const LawOrHysteretic& law);
+
 /// A prescribed signal of time for the kinematic rig: a constant, samples (piecewise linear), the paper's
 /// harmonic sliding velocity, or a Python callable (called with the GIL re-acquired). A switch per call
 /// instead of one rig instantiation per signal kind keeps the extension small.
@@ -57,6 +64,9 @@ public:
     static Signal from_python(py::handle value, const char* name);
 
     double operator()(double t) const;
+    /// d/dt of the signal: 0, the sampled slope ahead, analytic for the harmonic, a central difference of a
+    /// callable (h = 6e-6 max(1, |t|), two more calls: its O(h^2) error shifts located dw/dt = 0 switches slightly).
+    double derivative(double t) const;
     Kind kind() const { return kind_; }
     /// What from_python would rebuild this signal from (for pickling and repr).
     py::object to_python() const;

@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -108,6 +109,17 @@ double Signal::operator()(double t) const {
     return v;
 }
 
+double Signal::derivative(double t) const {
+    switch (kind_) {
+        case Kind::constant: return 0.0;
+        case Kind::sampled: return samples_->derivative(t);
+        case Kind::harmonic: return harmonic_->derivative(t);
+        case Kind::callable: break;
+    }
+    const double h = 6e-6 * std::max(1.0, std::abs(t));  // ~ cbrt(machine epsilon): the central difference's best
+    return ((*this)(t + h) - (*this)(t - h)) / (2.0 * h);
+}
+
 py::object Signal::to_python() const {
     switch (kind_) {
         case Kind::constant: return py::float_(value_);
@@ -141,17 +153,17 @@ std::array<double, Z> law_state_from_python(const std::optional<std::vector<doub
 }
 
 struct KinematicRigPy {
-    FrictionLaw friction;
+    LawOrHysteretic friction;
     Signal relative_velocity, normal_force;
     std::optional<std::vector<double>> initial_state;
     std::optional<double> frequency;  // of a harmonic relative velocity, Hz
-    RigVariant<Kinematic> rig;
+    RigVariant<Kinematic, LawsAndHysteretic> rig;
 
-    KinematicRigPy(FrictionLaw law, Signal v, Signal n, std::optional<std::vector<double>> z0,
+    KinematicRigPy(LawOrHysteretic law, Signal v, Signal n, std::optional<std::vector<double>> z0,
                    std::optional<double> frequency_)
         : friction(law), relative_velocity(v), normal_force(n), initial_state(std::move(z0)), frequency(frequency_),
           rig(std::visit(
-              [&](auto l) -> RigVariant<Kinematic> {
+              [&](auto l) -> RigVariant<Kinematic, LawsAndHysteretic> {
                   using Law = decltype(l);
                   auto z = law_state_from_python<Law::state_count>(initial_state, Law::name);
                   return Kinematic<Law>(std::move(l), relative_velocity, normal_force, z);
@@ -185,7 +197,7 @@ struct KinematicRigPy {
 
 KinematicRigPy make_rig(py::handle friction, py::handle relative_velocity, py::handle normal_force,
                         std::optional<std::vector<double>> initial_state) {
-    return KinematicRigPy(friction_law_from_python(friction, "friction"),
+    return KinematicRigPy(law_or_hysteretic_from_python(friction, "friction"),
                           Signal::from_python(relative_velocity, "relative_velocity"),
                           Signal::from_python(normal_force, "normal_force"), std::move(initial_state), std::nullopt);
 }
@@ -195,7 +207,7 @@ KinematicRigPy make_harmonic(py::handle friction, double v_d, double v_a, double
     detail::require_positive("KinematicRig", "frequency", frequency);
     if (!std::isfinite(2.0 * pi * frequency))
         detail::reject("KinematicRig", "frequency", "small enough that 2 pi f is finite", frequency);
-    return KinematicRigPy(friction_law_from_python(friction, "friction"), Signal::harmonic(v_d, v_a, 2.0 * pi * frequency),
+    return KinematicRigPy(law_or_hysteretic_from_python(friction, "friction"), Signal::harmonic(v_d, v_a, 2.0 * pi * frequency),
                           Signal::from_python(normal_force, "normal_force"), std::move(initial_state), frequency);
 }
 
@@ -212,7 +224,10 @@ friction_work int F v_r dt [J].
 
 Parameters
 ----------
-friction : a friction law (any class of fs.FRICTION_LAWS; a Stribeck law without Karnopp band)
+friction : a friction law (any class of fs.FRICTION_LAWS, a Stribeck law without Karnopp band, fs.CallableLaw) or
+    fs.HystereticFriction (paper 001's eq 6: relative_velocity is then the disc speed w [rad/s], its derivative
+    dw/dt picks the branch (a callable's by central difference), friction_force is the torque [N m]; modes 0
+    stick band, +-1 accelerating, +-2 decelerating)
 relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewise linear)
 normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
 initial_state : sequence of float, optional
@@ -224,7 +239,7 @@ initial_state : sequence of float, optional
                     py::arg("velocity_amplitude"), py::arg("frequency"), py::arg("normal_force"),
                     py::arg("initial_state") = py::none(),
                     "The paper's relative velocity v_r = v_d - v_a cos(2 pi f t) (eqs 8-9, 16), v_a [m/s], f [Hz].")
-        .def_property_readonly("friction", [](const KinematicRigPy& r) { return friction_law_to_python(r.friction); })
+        .def_property_readonly("friction", [](const KinematicRigPy& r) { return law_or_hysteretic_to_python(r.friction); })
         .def_property_readonly("relative_velocity", [](const KinematicRigPy& r) { return r.relative_velocity.to_python(); })
         .def_property_readonly("normal_force", [](const KinematicRigPy& r) { return r.normal_force.to_python(); })
         .def_readonly("initial_state", &KinematicRigPy::initial_state)
@@ -249,17 +264,17 @@ initial_state : sequence of float, optional
                             py::arg("initial_state") = r.initial_state);
             if (r.relative_velocity.kind() != Signal::Kind::harmonic) {
                 kwargs["relative_velocity"] = r.relative_velocity.to_python();
-                return reduce_by_construction(self, py::make_tuple(friction_law_to_python(r.friction)), kwargs);
+                return reduce_by_construction(self, py::make_tuple(law_or_hysteretic_to_python(r.friction)), kwargs);
             }
             // f, not w = 2 pi f, so that the rebuilt rig is bit-identical
             const py::tuple h = r.relative_velocity.to_python();
             kwargs["sliding_velocity"] = h[0];
             kwargs["velocity_amplitude"] = h[1];
             kwargs["frequency"] = *r.frequency;
-            return reduce_by_construction(self, py::make_tuple(friction_law_to_python(r.friction)), kwargs, "harmonic");
+            return reduce_by_construction(self, py::make_tuple(law_or_hysteretic_to_python(r.friction)), kwargs, "harmonic");
         })
         .def("__repr__", [](const KinematicRigPy& r) {
-            return "KinematicRig(friction=" + std::string(py::repr(friction_law_to_python(r.friction))) + ")";
+            return "KinematicRig(friction=" + std::string(py::repr(law_or_hysteretic_to_python(r.friction))) + ")";
         });
 }
 

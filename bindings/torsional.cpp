@@ -43,19 +43,25 @@ std::string format(double v) {
     return s.str();
 }
 
-/// The engine's laws and paper 001's eq 6, which only the disc (and the kinematic rig) can carry.
-using TorsionalLaws = append<PythonLaws, HystereticFriction>::type;
-using TorsionalLaw = variant_of<TorsionalLaws>::type;
-using TorsionalVariant = RigVariant<TorsionalRig, TorsionalLaws>;
+using TorsionalLaw = LawOrHysteretic;
+using TorsionalVariant = RigVariant<TorsionalRig, LawsAndHysteretic>;
 
-TorsionalLaw torsional_law_from_python(py::handle law) {
+}  // namespace
+
+LawOrHysteretic law_or_hysteretic_from_python(py::handle law, const char* parameter) {
     require_constructed(law);
     if (py::isinstance<HystereticFriction>(law)) return law.cast<HystereticFriction>();
     if (!py::isinstance<PowerLawCoefficient>(law) && is_engine_law(law))
-        return std::visit([](auto l) -> TorsionalLaw { return l; }, friction_law_from_python(law, "friction"));
-    throw py::type_error("friction must be a friction law (" + engine_law_names("HystereticFriction") + "), got " +
-                         std::string(py::str(py::type::of(law).attr("__name__"))));
+        return std::visit([](auto l) -> LawOrHysteretic { return l; }, friction_law_from_python(law, parameter));
+    throw py::type_error(std::string(parameter) + " must be a friction law (" + engine_law_names("HystereticFriction") +
+                         "), got " + std::string(py::str(py::type::of(law).attr("__name__"))));
 }
+
+py::object law_or_hysteretic_to_python(const LawOrHysteretic& law) {
+    return std::visit([](const auto& l) { return py::cast(l); }, law);
+}
+
+namespace {
 
 constexpr auto fields = TorsionalRigParams::fields();
 
@@ -83,11 +89,7 @@ TorsionalDrillStringRig make_rig(py::handle friction, const py::kwargs& kwargs) 
             if (!known) throw py::type_error("TorsionalRig() got an unexpected keyword argument '" + key + "'");
         }
     }
-    return TorsionalDrillStringRig(torsional_law_from_python(friction), p);
-}
-
-py::object law_to_python(const TorsionalLaw& law) {
-    return std::visit([](const auto& l) { return py::cast(l); }, law);
+    return TorsionalDrillStringRig(law_or_hysteretic_from_python(friction, "friction"), p);
 }
 
 /// Applies a rig method to every row of a (rows, states) array, e.g. the shaft torque of a whole Result.
@@ -238,7 +240,7 @@ Keywords
     auto cls = py::class_<TorsionalDrillStringRig>(m, "TorsionalRig", doc.c_str());
     cls.def(py::init(&make_rig), py::arg("friction"));
     def_field_properties(cls, fields, [](const TorsionalDrillStringRig& r) -> const TorsionalRigParams& { return r.params; });
-    cls.def_property_readonly("friction", [](const TorsionalDrillStringRig& r) { return law_to_python(r.friction); })
+    cls.def_property_readonly("friction", [](const TorsionalDrillStringRig& r) { return law_or_hysteretic_to_python(r.friction); })
         .def_property_readonly("period", [](const TorsionalDrillStringRig&) { return py::none(); },
                                "None: the rig has no imposed period (its stick-slip period is an outcome).")
         .def_property_readonly("natural_frequency",
@@ -272,10 +274,10 @@ Keywords
         })
         .def("__reduce__", [](py::handle self) {
             const auto& r = self.cast<const TorsionalDrillStringRig&>();
-            return reduce_by_construction(self, py::make_tuple(law_to_python(r.friction)), field_keywords(r.params, fields));
+            return reduce_by_construction(self, py::make_tuple(law_or_hysteretic_to_python(r.friction)), field_keywords(r.params, fields));
         })
         .def("__repr__", [](const TorsionalDrillStringRig& r) {
-            return "TorsionalRig(friction=" + std::string(py::repr(law_to_python(r.friction))) +
+            return "TorsionalRig(friction=" + std::string(py::repr(law_or_hysteretic_to_python(r.friction))) +
                    changed_fields_repr(r.params, fields) + ")";
         });
 }
