@@ -81,7 +81,7 @@ void coulomb_stick_slip_tolerance(benchmark::State& state, Method method) {
 /// LuGre stick-slip example of Canudas de Wit et al. 1995 (m = 1 kg, k = 2 N/m, 0.1 m/s), 20 s.
 void lugre_stick_slip(benchmark::State& state, Method method) {
     const Result r =
-        run_stick_slip(state, AxialRig<LuGre>(canudas_de_wit_1995_params(), LuGre(LuGre::Params{})), method);
+        run_stick_slip(state, AxialRig<LuGre>(canudas_de_wit_1995_params(), LuGre(canudas_de_wit_1995_lugre())), method);
     report(state, r, r.state(0, 1));
 }
 

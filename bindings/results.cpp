@@ -92,6 +92,10 @@ void register_results(py::module_& m) {
         .def_readwrite("timeout", &SolverOptions::timeout)
         .def_readwrite("max_output_rows", &SolverOptions::max_output_rows)
         .def_readonly_static("max_rtol", &SolverOptions::max_rtol)
+        .def_readonly_static("min_rtol", &SolverOptions::min_rtol)
+        .def("validate", &SolverOptions::validate, py::arg("state_size") = 1,
+             "Raises InvalidParameterError naming the first option that breaks its rule (what simulate() checks "
+             "when the run starts).")
         .def_readonly_static("reliable_rtol", &SolverOptions::reliable_rtol)
         .def_readonly_static("min_atol", &SolverOptions::min_atol);
 

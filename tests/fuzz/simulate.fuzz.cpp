@@ -96,17 +96,21 @@ void run_rigs(const Law& law, Bytes& in) {
     }
 }
 
+/// A law of the engine's list from the bytes: each field of its table either keeps its default or takes a number.
+template <class Law>
+Law law_from(Bytes& in) {
+    typename Law::Params p{};
+    for (const auto& f : Law::fields)
+        if (in.byte() & 1) p.*(f.member) = in.number();
+    return Law(p);
+}
+
 void run(Bytes& in) {
-    switch (in.byte() % 5) {
-        case 0: run_rigs(Coulomb(in.number(), in.number()), in); break;
-        case 1: run_rigs(Stribeck(Stribeck::Params{in.number(), in.number(), in.number(), 2.0, 0.0, 0.0}), in); break;
-        case 2: run_rigs(Dahl(in.number(), in.number(), in.number()), in); break;
-        case 3: run_rigs(LuGre(LuGre::Params{in.number(), in.number(), in.number(), in.number(), in.number(), 0.0}),
-                         in); break;
-        default:
-            run_rigs(ElastoPlastic(ElastoPlastic::Params{{in.number(), in.number(), in.number(), in.number(),
-                                                          in.number(), 0.0}, in.number()}), in);
-    }
+    const std::size_t which = in.byte() % EngineLaws::size;
+    std::size_t i = 0;
+    for_each_type(EngineLaws{}, [&](auto tag) {
+        if (i++ == which) run_rigs(law_from<typename decltype(tag)::type>(in), in);
+    });
 }
 
 }  // namespace

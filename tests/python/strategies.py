@@ -1,52 +1,76 @@
 """Hypothesis strategies over every law's, rig's and solver option's parameters, from ONE table of them.
 
-Each entry: the constructor keyword, the range where it is valid (inclusive lower unless ``open_low``) and a
-range of physically typical values that the runs draw from. Issue 12 will generate this table from the engine's
-own field tables; until then it is the single place the property tests read parameter names and rules from.
+Each entry: the constructor keyword, the range where it is valid (inclusive unless ``open_low`` / ``open_high``) and
+a range of physically typical values that the runs draw from. The laws' entries are generated from the engine's own
+parameter tables (``Law.parameters`` of every class of ``fs.FRICTION_LAWS``, issue 12): the rule from the interval,
+its open ends, the keyword bounding it from below (``at_least``) and NaN as "unset"; the typical values around the
+engine's typical value (``example``). The solver options are listed here, their tolerance limits read from
+``fs._core.SolverOptions``.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 from hypothesis import strategies as st
 
 import frictionsim as fs
+from frictionsim.fit.parameters import tied_parameters
 
 
 @dataclass(frozen=True)
 class Param:
-    valid: Tuple[float, float]  # the rule: valid in [low, high] (low excluded when open_low)
-    typical: Tuple[float, float]  # what physical runs draw from (log-uniform when both > 0)
+    valid: Tuple[float, float]  # the rule: valid in [low, high] (low excluded when open_low, high when open_high)
+    typical: Tuple[float, float]  # what physical runs draw from (log-uniform when both > 0); the excess with at_least
     open_low: bool = False
     infinite_ok: bool = False  # inf means "no limit" (max_step, timeout)
+    open_high: bool = False
+    at_least: Optional[str] = None  # also >= this keyword: drawn as its value plus a typical excess
+    unset_ok: bool = False  # NaN means "unset" (Coulomb's mu_static: equal to mu)
+    held: Optional[float] = None  # tied to other keywords by a rule the table does not state: always this, not mutated
 
 
-LAWS: Dict[type, Dict[str, Param]] = {
-    fs.Coulomb: {"mu": Param((0.0, math.inf), (0.05, 1.0), open_low=True)},
-    fs.Stribeck: {"mu": Param((0.0, math.inf), (0.05, 0.5), open_low=True),
-                  "mu_static": Param((0.0, math.inf), (0.5, 1.0), open_low=True),
-                  "stribeck_velocity": Param((0.0, math.inf), (1e-4, 1e-1), open_low=True),
-                  "shape_exponent": Param((0.0, math.inf), (0.5, 3.0), open_low=True),
-                  "viscous_coefficient": Param((0.0, math.inf), (1e-3, 10.0))},
-    fs.Dahl: {"mu": Param((0.0, math.inf), (0.05, 1.0), open_low=True),
-              "tangential_stiffness": Param((0.0, math.inf), (1e3, 1e6), open_low=True),
-              "exponent": Param((0.5, 50.0), (0.5, 3.0))},
-    fs.LuGre: {"mu": Param((0.0, math.inf), (0.05, 0.5), open_low=True),
-               "mu_static": Param((0.0, math.inf), (0.5, 1.0), open_low=True),
-               "stribeck_velocity": Param((0.0, math.inf), (1e-3, 1e-1), open_low=True),
-               "bristle_stiffness": Param((0.0, math.inf), (1e4, 1e6), open_low=True),
-               "bristle_damping": Param((0.0, math.inf), (1.0, 300.0)),
-               "viscous_damping": Param((0.0, math.inf), (1e-3, 10.0))},
-}
-LAWS[fs.ElastoPlastic] = dict(LAWS[fs.LuGre], breakaway_fraction=Param((0.0, 1.0), (0.0, 0.9)))
+#: Typical values of terms that the engine's example leaves off (0) but the runs should exercise, N s/m. Every
+#: other term that is off by default (a Karnopp band, which the kinematic rig refuses) is drawn off.
+_TYPICAL_WHEN_OFF = {"viscous_coefficient": (1e-3, 10.0), "viscous_damping": (1e-3, 10.0)}
 
+
+def _typical(record: Any, base: Any) -> Tuple[float, float]:
+    """A decade either side of the engine's example, inside the rule (an open end stays out); the excess over the
+    bounding keyword ``base`` (a decade either side of the examples' difference, or of the base's example)."""
+    if base is not None:
+        excess = record.example - base.example
+        scale = excess if math.isfinite(excess) and excess > 0.0 else base.example
+        return scale / 10.0, scale * 10.0
+    example = record.example
+    if not (math.isfinite(example) and example > 0.0):
+        return _TYPICAL_WHEN_OFF.get(record.name, (example, example) if math.isfinite(example) else (0.0, 0.0))
+    low, high = max(example / 10.0, record.lower), min(example * 10.0, record.upper)
+    if record.upper_open and high == record.upper:
+        high -= 1e-3 * (high - low)
+    if record.lower_open and low == record.lower:
+        low += 1e-3 * (high - low)
+    return low, high
+
+
+def _law_params(law: type) -> Dict[str, Param]:
+    records = {r.name: r for r in law.parameters}
+    tied = tied_parameters(law)
+    return {name: Param((r.lower, r.upper), _typical(r, records.get(r.at_least) if r.at_least else None),
+                        open_low=r.lower_open, open_high=r.upper_open, at_least=r.at_least or None,
+                        unset_ok=r.unset_allowed, held=r.example if name in tied else None)
+            for name, r in records.items()}
+
+
+LAWS: Dict[type, Dict[str, Param]] = {law: _law_params(law) for law in fs.FRICTION_LAWS}
+
+_SOLVER = fs._core.SolverOptions
 #: simulate() options: rule and typical values
 OPTIONS: Dict[str, Param] = {
-    "rtol": Param((1e-14, 0.1), (1e-10, 1e-4)),
-    "atol": Param((1e-20, math.inf), (1e-14, 1e-8)),
+    "rtol": Param((_SOLVER.min_rtol, _SOLVER.max_rtol), (1e-10, 1e-4)),
+    "atol": Param((_SOLVER.min_atol, math.inf), (1e-14, 1e-8)),
     "max_step": Param((0.0, math.inf), (1e-4, 1.0), open_low=True, infinite_ok=True),
     "event_window": Param((0.0, math.inf), (1e-9, 1e-5), open_low=True),
     "timeout": Param((0.0, math.inf), (5.0, 30.0), open_low=True, infinite_ok=True),
@@ -54,16 +78,18 @@ OPTIONS: Dict[str, Param] = {
 
 
 def valid(param: Param, value: float) -> bool:
+    """Does ``value`` obey the keyword's own rule (the at_least bound is the caller's: it needs the other value)?"""
     low, high = param.valid
-    if value == math.inf and param.infinite_ok:
+    if (value == math.inf and param.infinite_ok) or (math.isnan(value) and param.unset_ok):
         return True
-    return math.isfinite(value) and (value > low if param.open_low else value >= low) and value <= high
+    return (math.isfinite(value) and (value > low if param.open_low else value >= low)
+            and (value < high if param.open_high else value <= high))
 
 
 def typical(param: Param) -> st.SearchStrategy:
     low, high = param.typical
-    if low > 0:  # log-uniform over the decades
-        return st.floats(math.log10(low), math.log10(high)).map(lambda e: 10.0 ** e)
+    if low > 0:  # log-uniform over the decades, rounding kept inside
+        return st.floats(math.log10(low), math.log10(high)).map(lambda e: min(max(10.0 ** e, low), high))
     return st.floats(low, high)
 
 
@@ -75,11 +101,22 @@ def any_number() -> st.SearchStrategy:
 
 @st.composite
 def law_kwargs(draw, law: type, mutate: bool) -> Dict[str, float]:
-    """Typical keywords of ``law`` (mu_static >= mu kept); with ``mutate``, one of them replaced by any number."""
-    kwargs = {name: draw(typical(p)) for name, p in LAWS[law].items()}
-    if "mu_static" in kwargs:
-        kwargs["mu_static"] = max(kwargs["mu_static"], kwargs["mu"])
+    """Typical keywords of ``law`` (a keyword bounded by another drawn as that one plus an excess, so mu_static >=
+    mu); with ``mutate``, one of them replaced by any number (not NaN where NaN means "unset": valid by design, but
+    not by the properties' mu_static >= mu check)."""
+    params = LAWS[law]
+    kwargs: Dict[str, float] = {}
+    for name, p in params.items():
+        if p.held is not None:
+            kwargs[name] = p.held
+        elif p.at_least is None:
+            kwargs[name] = draw(typical(p))
+    for name, p in params.items():
+        if p.held is None and p.at_least is not None:
+            kwargs[name] = kwargs[p.at_least] + draw(typical(p))
+    kwargs = {name: kwargs[name] for name in params}
     if mutate:
-        name = draw(st.sampled_from(sorted(kwargs)))
-        kwargs[name] = draw(any_number())
+        name = draw(st.sampled_from(sorted(n for n, p in params.items() if p.held is None)))
+        numbers = any_number()
+        kwargs[name] = draw(numbers.filter(lambda x: not math.isnan(x)) if params[name].unset_ok else numbers)
     return kwargs

@@ -212,6 +212,44 @@ def test_stribeck_round_trip_with_sampled_normal_force(sweep):
     assert isinstance(result.law, fs.Stribeck) and result.law.karnopp_band == 0.0
 
 
+# ------------------------------------------------------------------------------------------------ any engine law
+@pytest.mark.skipif(not hasattr(fs, "GeneralizedMaxwellSlip"), reason="engine built without GeneralizedMaxwellSlip")
+def test_gms_is_identified_by_key_from_its_parameter_table():
+    """identify() fits any engine law with something to fit from the law's own parameter table: the generalized
+    Maxwell-slip law has no identify_* function and no entry in the fit's search hints for its attraction and
+    block parameters. One cycle of its own friction force (+-0.8 mm, past every block's break-away, 5-160 um at
+    10 N) gives back its Stribeck curve and the four block stiffnesses; attraction, shape and damping are held by
+    fixed=, the block weights (tied: they sum to 1) at their defaults."""
+    t = np.linspace(0.0, 1.0, 401)
+    v = 5e-3 * np.sin(2.0 * np.pi * t)
+    normal = 10.0
+    truth = dict(mu=0.3, mu_static=0.4, stribeck_velocity=1e-3, block_stiffness_1=8e4, block_stiffness_2=4e4,
+                 block_stiffness_3=2e4, block_stiffness_4=1e4)
+    sigma = 0.01  # N, 0.3 % of mu N
+    force = simulate_force(fs.GeneralizedMaxwellSlip(**truth), t, v, normal_force=normal)
+    force = force + np.random.default_rng(5).normal(0.0, sigma, t.size)
+    fixed = dict(shape_exponent=2.0, attraction=4000.0, block_damping=0.0, viscous_damping=0.0)
+    result = identify("gms", t, v, force, normal, fixed=fixed)  # no initial guess: the record's and the table's
+    assert result.success, result.message
+    assert result.law_name == "GeneralizedMaxwellSlip" and isinstance(result.law, fs.GeneralizedMaxwellSlip)
+    assert set(result.fitted) == set(truth)
+    # measured errors: 0.001 %, 0.03 %, 0.2 %, 0.2 %, 0.1 %, 0.02 %, 0.02 % (all within 0.5 s.e.)
+    check_recovered(result, truth, dict(mu=0.01, mu_static=0.01, stribeck_velocity=0.02, block_stiffness_1=0.03,
+                                        block_stiffness_2=0.02, block_stiffness_3=0.02, block_stiffness_4=0.02))
+    assert all(result.identifiable.values()), result.reasons
+    assert result.rms_residual == pytest.approx(sigma, rel=0.1)
+    assert [result.params[f"block_weight_{i}"] for i in range(1, 5)] == [0.1, 0.2, 0.3, 0.4]
+    assert "fixed" in result.reasons["block_weight_1"]
+    assert result.to_pandas().loc["block_stiffness_1", "symbol"] == "k_1"  # from the engine's table
+    # by class, with the weights given: the same fit; a weight cannot be fitted on its own
+    weights = {f"block_weight_{i}": w for i, w in zip(range(1, 5), (0.1, 0.2, 0.3, 0.4))}
+    again = identify(fs.GeneralizedMaxwellSlip, t, v, force, normal, fixed=dict(fixed, **weights))
+    assert again.params == result.params
+    with pytest.raises(ValueError) as excinfo:
+        identify("gms", t, v, force, normal, initial_guess=dict(block_weight_1=0.2))
+    assert parameter_of(excinfo) == "initial_guess['block_weight_1']"
+
+
 # ------------------------------------------------------------------------------------------------ global search
 def test_differential_evolution_without_initial_guess_is_deterministic():
     """Default bounds (mu 1e-4..10, k_t 10..1e10 N/m, alpha 0.5..4), no starting point: the paper's
@@ -324,7 +362,9 @@ def test_bad_rig_input_names_the_parameter(change, parameter):
 def test_public_names():
     """fs.fit.identify is the dispatching function (no module of that name shadows it)."""
     assert fs.fit.identify is identify and callable(identify)
-    assert set(LAW_PARAMETERS) == {"dahl", "lugre", "elasto_plastic", "stribeck"}
+    # every engine law with something to fit (Coulomb: mu N sgn(v_r) on the kinematic rig, nothing to identify)
+    assert set(LAW_PARAMETERS) == {law.key for law in fs.FRICTION_LAWS} - {"coulomb"}
+    assert {"dahl", "lugre", "elasto_plastic", "stribeck"} <= set(LAW_PARAMETERS)
     assert LAW_PARAMETERS["dahl"]["tangential_stiffness"] == ("k_t", "N/m", (10.0, 1e10))
     assert fs.fit.IdentificationResult is IdentificationResult
 

@@ -62,6 +62,8 @@ struct SolverOptions {
     /// The loosest rtol accepted: past it a 5(4) or BDF error estimate no longer bounds the error (a cycle-mean
     /// friction force of the axial rig came out with the wrong sign at rtol 0.2).
     static constexpr double max_rtol = 0.1;
+    /// The tightest rtol accepted: below it the error control asks for less than double precision resolves.
+    static constexpr double min_rtol = 1e-14;
     /// Above this rtol a result is flagged (Result::warnings): at rtol 1e-2 the axial rig's mean friction force
     /// was 4x off, completed and plausible-looking.
     static constexpr double reliable_rtol = 1e-3;
@@ -72,10 +74,11 @@ struct SolverOptions {
     /// Throws InvalidParameter naming the offending option. `state_size` sizes atol_per_state.
     void validate(std::size_t state_size) const {
         constexpr const char* who = "SolverOptions";
-        detail::require_positive(who, "rtol", rtol);
-        if (rtol < 1e-14) detail::reject(who, "rtol", ">= 1e-14 (below double precision)", rtol);
-        if (rtol > max_rtol)
-            detail::reject(who, "rtol", "<= 0.1 (looser, the integrators' error estimates bound nothing)", rtol);
+        if (!(rtol >= min_rtol && rtol <= max_rtol))
+            detail::reject(who, "rtol",
+                           "in [1e-14, 0.1] (below, under double precision; looser, the integrators' error estimates "
+                           "bound nothing)",
+                           rtol);
         const auto check_atol = [&](const char* name, double a) {
             detail::require_positive(who, name, a);
             if (a < min_atol)

@@ -2,16 +2,17 @@
 
 Identification by output-error least squares, one module a job:
 
-* :mod:`.kinematic`: identify_dahl / identify_lugre / identify_elasto_plastic / identify_stribeck / identify on the
-  kinematic rig;
+* :mod:`.kinematic`: identify_dahl / identify_lugre / identify_elasto_plastic / identify_stribeck on the kinematic
+  rig, and identify for any law of ``fs.FRICTION_LAWS`` with something to fit (the keys of LAW_PARAMETERS);
 * :mod:`.rig`: identify_axial_rig, the law inside paper 000's axial vibrating-sliding rig;
 * :mod:`.torsional`: paper 001's identification of the hysteretic law (eq 6) on the torsional rig, by linear least
   squares: estimate_friction_torque (eq 1a from the encoder angles, FrictionTorqueEstimate) and
   fit_hysteretic_friction (stick slope and poly22 branches; HystereticFit, BranchFit);
-* :mod:`.parameters` (each law's parameters), :mod:`.search_space` (log / linear search variables, bounds),
-  :mod:`.validation` (the record), :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`,
-  :mod:`.solver` (scan, least_squares, differential_evolution), :mod:`.uncertainty` (covariance,
-  identifiability), :mod:`.result` (IdentificationResult).
+* :mod:`.parameters` (each law's fit variables: the engine's parameter table plus search hints),
+  :mod:`.search_space` (log / linear search variables, bounds), :mod:`.validation` (the record),
+  :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`, :mod:`.solver` (scan, least_squares,
+  differential_evolution), :mod:`.uncertainty` (covariance, identifiability), :mod:`.result`
+  (IdentificationResult).
 """
 
 from .power_law import PowerLawFit, fit_power_law

@@ -1,5 +1,5 @@
-"""Friction-law identification on the kinematic rig: Dahl, LuGre, ElastoPlastic and Stribeck fitted to a
-measured friction force through the C++ engine.
+"""Friction-law identification on the kinematic rig: any engine law with something to fit (Dahl, LuGre,
+ElastoPlastic, Stribeck, ...: :func:`identify` lists them) fitted to a measured friction force through the C++ engine.
 
 Paper 000 (sec 4.2) stresses that the Dahl tangential contact stiffness k_t "is one of the most complicated
 parameters that need to be determined" and that genetic / particle-swarm searches are commonly used for it.
@@ -24,9 +24,9 @@ import numpy as np
 
 from .._core import KinematicRig
 from .forward_model import _force_atol, _simulate, _simulate_kwargs, _with_state_atol
-from .parameters import _INITIAL_FORCE, _law_def, _LawDef, _Param, _stiffness_first
+from .parameters import _INITIAL_FORCE, _law_def, _LawDef, _Param
 from .result import IdentificationResult, _result
-from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds, _user_values
+from .search_space import Bounds, _build_spec, _resolve_excess, _user_bounds, _user_values
 from .solver import _fit, _fit_setup
 from .validation import _normal_force, _record, _reject, _summable, _varying, _vector, _weights
 
@@ -36,16 +36,17 @@ __all__ = ["identify", "identify_dahl", "identify_lugre", "identify_elasto_plast
 def _data_guess(lawdef: _LawDef, v: np.ndarray, force: np.ndarray, n_abs: np.ndarray) -> Dict[str, float]:
     """Starting values from the record (refined by a coarse scan and least_squares).
 
-    Dahl: mu from the saturated plateau of |F| / N. Stribeck / LuGre / ElastoPlastic: the sliding branch at the
-    faster half of the samples, sgn(v_r) F = mu N + sigma v_r, fitted as a line (mu from the intercept,
-    sigma_2 / sigma_v from the slope); mu_static from the top 1 % of |F| / N.
+    Dahl: mu from the saturated plateau of |F| / N. Laws with a Stribeck curve (a static coefficient: Stribeck,
+    LuGre, ElastoPlastic, ...): the sliding branch at the faster half of the samples, sgn(v_r) F = mu N + sigma v_r,
+    fitted as a line (mu from the intercept, sigma_2 / sigma_v from the slope); mu_static from the top 1 % of
+    |F| / N.
     """
     ratio = np.abs(force) / n_abs
     speed = np.abs(v)
     top = float(np.quantile(ratio, 0.95))
     mu = float(np.median(ratio[ratio >= 0.9 * top]))  # the saturated plateau, unbiased by the noise
     viscous = 0.0
-    if lawdef.key != "dahl":
+    if lawdef.excess:
         fast = speed >= np.quantile(speed, 0.5)
         if np.count_nonzero(fast) >= 3 and np.ptp(speed[fast]) > 0:
             slope, intercept = np.polyfit(speed[fast], np.sign(v[fast]) * force[fast] / n_abs[fast], 1)
@@ -79,6 +80,9 @@ def _initial_state_choice(lawdef: _LawDef, initial_state: Union[str, float, Sequ
                     "initial_state")
         if lawdef.state_count == 0 and initial_state == "fit":
             _reject(f"initial_state='fit': {lawdef.name} has no internal state", "initial_state")
+        if initial_state == "fit" and not lawdef.inverts_force:
+            _reject(f"initial_state='fit': the friction force does not determine {lawdef.name}'s state; give "
+                    f"'zero' or the state", "initial_state")
         if initial_state == "fit":
             extra[_INITIAL_FORCE] = _Param(_INITIAL_FORCE, "F_0", "N", (-2.0 * force_scale, 2.0 * force_scale),
                                            minimum=-math.inf, strict=False)
@@ -114,8 +118,8 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
     all_bounds = _user_bounds(lawdef, bounds, extra, force_scale, float(np.max(np.abs(v))) or 1.0)
     user_guess = _user_values(lawdef, initial_guess, "initial_guess", tuple(extra))
     user_fixed = _user_values(lawdef, fixed, "fixed")
-    _resolve_mu_static(user_guess, user_guess.get("mu", user_fixed.get("mu")), "initial_guess")
-    _resolve_mu_static(user_fixed, user_fixed.get("mu"), "fixed")
+    _resolve_excess(lawdef, user_guess, "initial_guess", user_fixed)
+    _resolve_excess(lawdef, user_fixed, "fixed")
     for name in user_fixed:
         if name in user_guess:
             _reject(f"{name} is both fixed and given an initial guess", f"fixed[{name!r}]")
@@ -129,14 +133,18 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
     for p in list(lawdef.params) + list(extra.values()):
         if p.name in user_fixed:
             fixed_values[p.name] = user_fixed[p.name]
+        elif p.tied:
+            if p.name in user_guess:
+                lawdef.refuse_fitting_tied(p.name, f"initial_guess[{p.name!r}]")
+            fixed_values[p.name] = p.default if p.default is not None else p.start
         else:
             fitted_names.append(p.name)
     if len(fitted_names) >= t.size:
         _reject(f"t: {t.size} samples cannot determine {len(fitted_names)} parameters", "t")
     floors = {_INITIAL_FORCE: force_scale}  # F_0 may be ~0: its relative error is taken against max|F|
     spec = _build_spec(lawdef, fitted_names, guess, fixed_values, all_bounds, extra, floors, user_guess)
-    scan_names = _stiffness_first([p.name for p in lawdef.params
-                                   if p.scan and p.name in fitted_names and p.name not in user_guess])
+    scan_names = lawdef.scan_order([p.name for p in lawdef.params
+                                    if p.scan and p.name in fitted_names and p.name not in user_guess])
 
     def rig_for(q: Mapping[str, float]):
         physical = lawdef.physical(q)
@@ -189,11 +197,15 @@ _COMMON_DOC = """
         they seed the population. Names as the law's keywords or their symbols (k_t, alpha, v_s, sigma0, ...);
         mu_static needs mu given too.
     fixed : dict, optional
-        Parameters held at the given values instead of fitted.
+        Parameters held at the given values instead of fitted. Parameters tied by a rule across them that the
+        law's table does not state (GeneralizedMaxwellSlip's block weights, which sum to 1) are never fitted:
+        they take the value given here or their default.
     initial_state : "measured" | "fit" | "zero" | float
         Law state at t[0]: from the first measured force (Dahl z0 = F0 / k_t; LuGre from F0 and v_r(t0);
         ElastoPlastic as LuGre when sliding, z0 = (F0 - (sigma_1 + sigma_2) v_r(t0)) / sigma_0 in its elastic
-        band), fitted (reported as ``initial_force`` F_0 [N]), zero, or the law state itself (m).
+        band; a law whose state the force does not determine, such as GeneralizedMaxwellSlip's blocks, starts at
+        rest, z = 0), fitted (reported as ``initial_force`` F_0 [N]; laws with such an inverse only), zero, or
+        the law state itself (m).
     weights : array, optional
         Residual weights (1/sigma_i).
     rtol : float
@@ -307,17 +319,28 @@ def identify_stribeck(t: Any, relative_velocity: Any, friction_force: Any, norma
                                bounds=bounds, initial_guess=guess, fixed=fixed, **options)
 
 
+#: The laws with their own identify_* function (extra keywords such as fit_exponent); any other law of
+#: LAW_PARAMETERS is fitted by the common core with the common keywords.
+_FUNCTIONS = {"dahl": identify_dahl, "lugre": identify_lugre, "elasto_plastic": identify_elasto_plastic,
+              "stribeck": identify_stribeck}
+
+
 def identify(law: Any, t: Any, relative_velocity: Any, friction_force: Any, normal_force: Any,
              **kwargs: Any) -> IdentificationResult:
-    """Dispatch to :func:`identify_dahl`, :func:`identify_lugre`, :func:`identify_elasto_plastic` or
-    :func:`identify_stribeck` by ``law`` ("dahl", "lugre", "elasto_plastic" or "elastoplastic", "stribeck",
-    case-insensitive, or the class fs.Dahl / fs.LuGre / fs.ElastoPlastic / fs.Stribeck)."""
+    """Identify ``law`` from the record: any engine law of ``fs.FRICTION_LAWS`` with something to fit (the keys
+    of ``LAW_PARAMETERS``), by its key ("dahl", "lugre", "elasto_plastic" or "elastoplastic", "stribeck", "gms",
+    ..., case-insensitive), its class name, or its class (fs.Dahl, fs.LuGre, ...).
+
+    Dispatches to :func:`identify_dahl`, :func:`identify_lugre`, :func:`identify_elasto_plastic` or
+    :func:`identify_stribeck` where the law has one; any other law takes the common keywords below.
+    """
     lawdef = _law_def(law)
-    function = {"dahl": identify_dahl, "lugre": identify_lugre, "elasto_plastic": identify_elasto_plastic,
-                "stribeck": identify_stribeck}[lawdef.key]
+    function = _FUNCTIONS.get(lawdef.key)
+    if function is None:
+        return _identify_kinematic(lawdef.key, t, relative_velocity, friction_force, normal_force, **kwargs)
     return function(t, relative_velocity, friction_force, normal_force, **kwargs)
 
 
-for _f in (identify_dahl, identify_lugre, identify_elasto_plastic, identify_stribeck):
+for _f in (identify_dahl, identify_lugre, identify_elasto_plastic, identify_stribeck, identify):
     _f.__doc__ = (_f.__doc__ or "") + _COMMON_DOC
 del _f

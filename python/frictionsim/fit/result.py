@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .parameters import _PHYSICAL_META, _LawDef
+from .parameters import _LawDef, _symbol_unit
 from .quality import _finite_or_failed, _fit_quality, _non_finite
 from .solver import _Fit
 
@@ -25,8 +25,8 @@ class IdentificationResult:
     Attributes
     ----------
     law_name : str
-        "Dahl", "LuGre", "ElastoPlastic" or "Stribeck".
-    law : fs.Dahl | fs.LuGre | fs.ElastoPlastic | fs.Stribeck or None
+        The law's class name: "Dahl", "LuGre", "ElastoPlastic", "Stribeck", ... (see ``fs.fit.LAW_PARAMETERS``).
+    law : fs.Dahl | fs.LuGre | fs.ElastoPlastic | fs.Stribeck | ... or None
         Ready to use, e.g. ``fs.AxialVibrationRig(friction=result.law)``; None if a parameter is not finite.
     params : dict
         Fitted and fixed parameters under the law constructor's keywords (mu [-], tangential_stiffness [N/m],
@@ -123,7 +123,7 @@ class IdentificationResult:
         rel = self.relative_stderr
         rows = []
         for name, value in self.params.items():
-            symbol, unit = _PHYSICAL_META.get(name, (name, ""))
+            symbol, unit = _symbol_unit(self.law_name, name)
             rows.append(dict(parameter=name, value=value, stderr=self.stderr[name], relative_stderr=rel[name],
                              symbol=symbol, unit=unit, fitted=name in self.fitted,
                              identifiable=self.identifiable[name], reason=self.reasons[name]))
@@ -145,7 +145,7 @@ class IdentificationResult:
         ]
         rel = self.relative_stderr
         for name, value in self.params.items():
-            symbol, unit = _PHYSICAL_META.get(name, (name, ""))
+            symbol, unit = _symbol_unit(self.law_name, name)
             label = f"{name} [{unit}]"
             if name in self.fitted:
                 se = f"{self.stderr[name]:.4g}"

@@ -20,9 +20,9 @@ import numpy as np
 
 from .._core import AxialVibrationRig, Dahl
 from .forward_model import _force_atol, _simulate, _simulate_kwargs, _with_state_atol
-from .parameters import _canonical, _stiffness_first
+from .parameters import _canonical
 from .result import IdentificationResult, _result
-from .search_space import Bounds, _build_spec, _resolve_mu_static, _user_bounds, _user_values
+from .search_space import Bounds, _build_spec, _resolve_excess, _user_bounds, _user_values
 from .solver import _fit, _fit_setup
 from .validation import _record, _reject, _summable, _varying, _weights
 
@@ -51,8 +51,9 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
         included; subtract a logger's start time).
     drive_force : array, N
         Measured drive force at ``t``.
-    law : "dahl" | "lugre" | "elasto_plastic" | "stribeck"
-        The friction law inside the rig.
+    law : str or class
+        The friction law inside the rig: any law :func:`frictionsim.fit.identify` accepts (a key of
+        ``LAW_PARAMETERS``, e.g. "dahl", "lugre", "elasto_plastic", "stribeck", or the class).
     fit : sequence of str
         Parameters to estimate (e.g. ("mu", "tangential_stiffness") or with "exponent"); the others are held
         at ``initial_guess`` values or the law's defaults (Dahl exponent 1).
@@ -117,10 +118,12 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     fitted_names: List[str] = []
     for key in fit:
         name = _canonical(lawdef, str(key), "fit")
-        if name == "mu_static":
-            _reject("fit: mu_static is fitted as mu_static_excess = mu_static - mu; name that", "fit")
+        if name in lawdef.excess:
+            variable, other = lawdef.excess[name]
+            _reject(f"fit: {name} is fitted as {variable} = {name} - {other}; name that", "fit")
         if name in fitted_names:
             _reject(f"fit names {name} twice", "fit")
+        lawdef.refuse_fitting_tied(name, "fit")
         fitted_names.append(name)
     if not fitted_names:
         _reject("fit must name at least one parameter", "fit")
@@ -130,7 +133,7 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     speed = max(probe.vibration_velocity_amplitude, probe.sliding_velocity, 1e-3)
     all_bounds = _user_bounds(lawdef, bounds, {}, float(np.max(np.abs(measured_all))) or 1.0, speed)
     values = _user_values(lawdef, initial_guess, "initial_guess")
-    _resolve_mu_static(values, values.get("mu"), "initial_guess")
+    _resolve_excess(lawdef, values, "initial_guess")
     user_guess = {k: v for k, v in values.items() if k in fitted_names}
     fixed: Dict[str, float] = {}
     for p in lawdef.params:
@@ -152,8 +155,8 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     guess.update(user_guess)
     spec = _build_spec(lawdef, fitted_names, guess, fixed, all_bounds, {}, {}, user_guess)
     # mu is scanned too: the drive-force level is a rough guess of mu N, since F_d also carries m x''
-    scan_names = _stiffness_first([name for name in fitted_names if name not in user_guess and
-                                   (lawdef.param(name).scan or name == "mu")])
+    scan_names = lawdef.scan_order([name for name in fitted_names if name not in user_guess and
+                                    (lawdef.param(name).scan or name == "mu")])
 
     after = f" after transient = {transient} s" if transient else ""
     measured = _varying("drive_force", measured_all[window], where=after)

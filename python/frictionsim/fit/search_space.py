@@ -119,9 +119,9 @@ def _user_bounds(lawdef: _LawDef, bounds: Optional[Bounds], extra: Mapping[str, 
     for key, pair in (bounds or {}).items():
         name = _canonical(lawdef, key, "bounds", tuple(extra))
         where = f"bounds[{key!r}]"
-        if name == "mu_static":
-            _reject(f"{where}: mu_static is fitted as mu_static_excess = mu_static - mu >= 0; bound that instead",
-                    where)
+        if name in lawdef.excess:
+            variable, other = lawdef.excess[name]
+            _reject(f"{where}: {name} is fitted as {variable} = {name} - {other} >= 0; bound that instead", where)
         try:
             lo, hi = (float(pair[0]), float(pair[1]))
         except (TypeError, ValueError, IndexError):
@@ -133,8 +133,9 @@ def _user_bounds(lawdef: _LawDef, bounds: Optional[Bounds], extra: Mapping[str, 
             if lo < param.minimum or (param.strict and lo == param.minimum):
                 rule = ">" if param.strict else ">="
                 _reject(f"{where}: the lower bound must be {rule} {param.minimum} for {name} (got {lo})", where)
-        if math.isfinite(param.maximum) and hi >= param.maximum:
-            _reject(f"{where}: the upper bound must be < {param.maximum} for {name} (got {hi})", where)
+        if math.isfinite(param.maximum) and not param.admits(hi):
+            rule = "<" if param.strict_max else "<="
+            _reject(f"{where}: the upper bound must be {rule} {param.maximum} for {name} (got {hi})", where)
         out[name] = (lo, hi)
     return out
 
@@ -155,17 +156,21 @@ def _user_values(lawdef: _LawDef, values: Optional[Mapping[str, float]], where: 
     return out
 
 
-def _resolve_mu_static(values: Dict[str, float], mu: Optional[float], where: str) -> None:
-    """Turn a given mu_static into mu_static_excess (needs mu)."""
-    if "mu_static" not in values:
-        return
-    mu_static = values.pop("mu_static")
-    if mu is None:
-        _reject(f"{where}['mu_static'] needs mu in {where} too (mu_static is fitted as mu_static - mu); "
-                f"or give mu_static_excess", f"{where}['mu_static']")
-    if mu_static < mu:
-        _reject(f"{where}['mu_static'] must be >= mu ({mu}); got {mu_static}", f"{where}['mu_static']")
-    values["mu_static_excess"] = mu_static - mu
+def _resolve_excess(lawdef: _LawDef, values: Dict[str, float], where: str,
+                    lower_values: Optional[Mapping[str, float]] = None) -> None:
+    """Turn a given mu_static (any keyword bounded below by another) into its fit variable mu_static_excess =
+    mu_static - mu; needs mu in ``values`` or ``lower_values``."""
+    for name, (variable, other) in lawdef.excess.items():
+        if name not in values:
+            continue
+        value = values.pop(name)
+        bound = values.get(other, (lower_values or {}).get(other))
+        if bound is None:
+            _reject(f"{where}[{name!r}] needs {other} in {where} too ({name} is fitted as {name} - {other}); "
+                    f"or give {variable}", f"{where}[{name!r}]")
+        if value < bound:
+            _reject(f"{where}[{name!r}] must be >= {other} ({bound}); got {value}", f"{where}[{name!r}]")
+        values[variable] = value - bound
 
 
 def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, float], fixed: Mapping[str, float],
@@ -186,9 +191,8 @@ def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, floa
             value = lo
         variables.append(_make_var(param, (lo, hi), value, floors.get(name, 0.0)))
     for name, value in fixed.items():
-        param = extra.get(name) or (lawdef.param(name) if name != "mu_static" else None)
-        if param is not None and (value < param.minimum or (param.strict and value == param.minimum)
-                                  or value >= param.maximum):
+        param = extra.get(name) or lawdef.param(name)
+        if not param.admits(value):
             _reject(f"fixed[{name!r}] = {value} is not a valid {name}", f"fixed[{name!r}]")
 
     def physical(q: Mapping[str, float]) -> Dict[str, float]:

@@ -346,11 +346,7 @@ class _Parser:
             raise self.error(paths["method"], f"must be one of {', '.join(METHODS)} (got {values['method']!r})")
         if "output_points" in values and "output_step" in values:
             raise self.error(paths["output_step"], "give output_points or output_step, not both")
-        if "rtol" in values and not 1e-14 <= values["rtol"] <= _core.SolverOptions.max_rtol:
-            raise self.error(paths["rtol"], f"must be in [1e-14, {_core.SolverOptions.max_rtol:g}]: looser, the "
-                                            f"error estimates bound nothing (got {values['rtol']:g})")
-        if "atol" in values and values["atol"] < _core.SolverOptions.min_atol:
-            raise self.error(paths["atol"], f"must be >= {_core.SolverOptions.min_atol:g} (got {values['atol']:g})")
+        self.engine_solver_rules(values, paths)
         if "output_points" in values and not 2 <= values["output_points"] <= MAX_OUTPUT_POINTS:
             raise self.error(paths["output_points"],
                              f"must be in [2, {MAX_OUTPUT_POINTS:.0e}] (got {values['output_points']})")
@@ -362,6 +358,17 @@ class _Parser:
                 raise self.error(paths["output_step"], f"must give at most {MAX_OUTPUT_POINTS:.0e} output points "
                                  f"(t_end / output_step = {values['t_end'] / values['output_step']:.3g})")
         return SolverSpec(**values), paths
+
+    def engine_solver_rules(self, values: Dict[str, Any], paths: Dict[str, str]) -> None:
+        """The engine's own rules on rtol, atol and timeout (SolverOptions.validate), reported at the file's key."""
+        options = _core.SolverOptions()
+        for key in ("rtol", "atol", "timeout"):
+            if key in values:
+                setattr(options, key, values[key])
+        try:
+            options.validate()
+        except InvalidParameterError as error:
+            raise self.engine(error, paths, "solver") from None
 
     def analysis(self, merged, path: str, kind) -> Tuple[AnalysisSpec, Dict[str, str]]:
         values, paths = {}, {}

@@ -11,6 +11,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
+from ..simulation import SOLVER_DEFAULTS
 from . import rigs
 
 __all__ = ["AnalysisSpec", "Case", "FrictionSpec", "OutputSpec", "RigSpec", "Scenario", "SolverSpec", "TABLES"]
@@ -76,8 +77,8 @@ class SolverSpec:
 
     t_end: float
     method: str = "automatic"
-    rtol: float = 1e-8
-    atol: float = 1e-10
+    rtol: float = SOLVER_DEFAULTS.rtol
+    atol: float = SOLVER_DEFAULTS.atol
     output_points: Optional[int] = 2001
     output_step: Optional[float] = None
     timeout: Optional[float] = None  #: wall-clock budget of each run [s]
