@@ -5,8 +5,7 @@
 
 #include <sstream>
 
-#include "simulation.hpp"
-#include "table_binding.hpp"
+#include "rig_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -43,8 +42,6 @@ std::string format(double v) {
     return s.str();
 }
 
-using TorsionalLaw = LawOrHysteretic;
-using TorsionalVariant = RigVariant<TorsionalRig, LawsAndHysteretic>;
 
 }  // namespace
 
@@ -65,32 +62,8 @@ namespace {
 
 constexpr auto fields = TorsionalRigParams::fields();
 
-struct TorsionalDrillStringRig {
-    TorsionalLaw friction;
-    TorsionalRigParams params;
-    TorsionalVariant rig;
-
-    TorsionalDrillStringRig(TorsionalLaw law, const TorsionalRigParams& p)
-        : friction(law), params(p),
-          rig(std::visit([&](auto l) -> TorsionalVariant { return TorsionalRig<decltype(l)>(p, std::move(l)); }, law)) {}
-
-    template <class F>
-    decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), rig); }
-};
-
-TorsionalDrillStringRig make_rig(py::handle friction, const py::kwargs& kwargs) {
-    TorsionalRigParams p;
-    const std::size_t used = read_field_keywords(p, kwargs, fields, "TorsionalRig");
-    if (used != kwargs.size()) {
-        for (auto item : kwargs) {
-            const std::string key = py::str(item.first);
-            bool known = false;
-            for (const auto& f : fields) known = known || key == f.name;
-            if (!known) throw py::type_error("TorsionalRig() got an unexpected keyword argument '" + key + "'");
-        }
-    }
-    return TorsionalDrillStringRig(law_or_hysteretic_from_python(friction, "friction"), p);
-}
+using TorsionalDrillStringRig = BoundRig<TorsionalRig, LawsAndHysteretic, TorsionalRigParams>;
+constexpr std::array<ExtraKeyword<TorsionalRigParams>, 0> no_extra_keywords{};
 
 /// Applies a rig method to every row of a (rows, states) array, e.g. the shaft torque of a whole Result.
 template <class F>
@@ -210,7 +183,7 @@ branch_gap : {"hold", "error"}
     }, py::arg("branch_gap") = "hold",
           "The eq 6 law chosen to reproduce paper 001's Fig. 7 (0.835 Hz, peak 13.8 rad/s at w_ref = 5.76 rad/s, N2 = 35 N).");
 
-    std::string doc = R"doc(
+    const std::string description = R"doc(
 The torsional drill-string rig of paper 001 (eqs 1-5): disc D2 on a shaft (k2, d2), driven through a gear
 eta:1 by a DC motor (L, R, K_T, K_E, T_f, C_m, J_m) under PI speed control of the load-side speed w3, with
 friction torque T_f2 on the disc:
@@ -235,23 +208,16 @@ T_f2 [N m]; its mode is the disc's (minus 16 while the motor sticks, minus 32 wh
 Keywords
 --------
 )doc";
-    doc += keywords_doc(fields);
-
-    auto cls = py::class_<TorsionalDrillStringRig>(m, "TorsionalRig", doc.c_str());
-    cls.def(py::init(&make_rig), py::arg("friction"));
-    def_field_properties(cls, fields, [](const TorsionalDrillStringRig& r) -> const TorsionalRigParams& { return r.params; });
-    cls.def_property_readonly("friction", [](const TorsionalDrillStringRig& r) { return law_or_hysteretic_to_python(r.friction); })
-        .def_property_readonly("period", [](const TorsionalDrillStringRig&) { return py::none(); },
+    auto cls = bind_rig<TorsionalDrillStringRig>(m, "TorsionalRig", description, fields, law_or_hysteretic_to_python,
+                                                 [](const TorsionalDrillStringRig&) { return py::dict(); });
+    def_table_init(cls, "TorsionalRig", fields, no_extra_keywords, [](py::handle friction, const TorsionalRigParams& p) {
+        return TorsionalDrillStringRig(law_or_hysteretic_from_python(friction, "friction"), p);
+    });
+    cls.def_property_readonly("period", [](const TorsionalDrillStringRig&) { return py::none(); },
                                "None: the rig has no imposed period (its stick-slip period is an outcome).")
         .def_property_readonly("natural_frequency",
                                [](const TorsionalDrillStringRig& r) { return r.visit([](const auto& s) { return s.natural_frequency(); }); },
                                "sqrt(k2 / J2) / 2 pi [Hz]: the disc on a rigidly held shaft end.")
-        .def_property_readonly("state_names", [](const TorsionalDrillStringRig& r) {
-            return r.visit([](const auto& s) {
-                const auto names = s.state_names();
-                return std::vector<std::string>(names.begin(), names.end());
-            });
-        })
         .def("shaft_torque", [](const TorsionalDrillStringRig& r, py::array_t<double, py::array::c_style | py::array::forcecast> states) {
                  return per_row(r, states, py::none(), [](const auto& s, const double* x, int) { return s.shaft_torque(x); });
              },
@@ -268,18 +234,7 @@ Keywords
                                      py::object mode) {
                  return per_row(r, states, mode, [](const auto& s, const double* x, int md) { return s.disc_acceleration(x, md); });
              },
-             py::arg("states"), py::arg("mode"), "dw2/dt [rad/s^2] for each row in its recorded mode.")
-        .def("_simulate", [](const TorsionalDrillStringRig& r, double t_end, const SolverOptions& options, double t_start) {
-            return simulate_variant(r.rig, t_end, options, t_start);
-        })
-        .def("__reduce__", [](py::handle self) {
-            const auto& r = self.cast<const TorsionalDrillStringRig&>();
-            return reduce_by_construction(self, py::make_tuple(law_or_hysteretic_to_python(r.friction)), field_keywords(r.params, fields));
-        })
-        .def("__repr__", [](const TorsionalDrillStringRig& r) {
-            return "TorsionalRig(friction=" + std::string(py::repr(law_or_hysteretic_to_python(r.friction))) +
-                   changed_fields_repr(r.params, fields) + ")";
-        });
+             py::arg("states"), py::arg("mode"), "dw2/dt [rad/s^2] for each row in its recorded mode.");
 }
 
 }  // namespace frictionsim::python
