@@ -36,7 +36,7 @@ py::dict extras_of(const AxialVibrationRig& r) {
 
 }  // namespace
 
-void register_axial(py::module_& m) {
+py::object register_axial(py::module_& m) {
     const std::string description = R"doc(
 The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
 k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:
@@ -81,6 +81,7 @@ Keywords
                  return r.visit([&](const auto& s) { return s.surface_velocity(t); });
              }),
              py::arg("t"), "Velocity of the vibrating surface u0 w cos(w t) [m/s].");
+    return std::move(cls);
 }
 
 }  // namespace frictionsim::python

@@ -85,9 +85,9 @@ private:
 void register_errors(py::module_& m);
 void register_laws(py::module_& m);
 void register_results(py::module_& m);
-void register_axial(py::module_& m);
-void register_kinematic(py::module_& m);
+py::object register_axial(py::module_& m);
+py::object register_kinematic(py::module_& m);
 void register_contact(py::module_& m);
-void register_torsional(py::module_& m);
+py::object register_torsional(py::module_& m);
 
 }  // namespace frictionsim::python

@@ -213,8 +213,8 @@ KinematicRigPy make_harmonic(py::handle friction, double v_d, double v_a, double
 
 }  // namespace
 
-void register_kinematic(py::module_& m) {
-    py::class_<KinematicRigPy>(m, "KinematicRig", R"doc(
+py::object register_kinematic(py::module_& m) {
+    py::class_<KinematicRigPy> cls(m, "KinematicRig", R"doc(
 A friction law driven by a prescribed relative velocity v_r(t) [m/s] and normal force N(t) [N]: no mass, so
 set-valued laws (Coulomb, Stribeck) give their slip force on the branch sgn(v_r); reversals of v_r are located
 as events. This is the model that identification from measured signals fits (frictionsim.fit).
@@ -232,8 +232,8 @@ relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewi
 normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
 initial_state : sequence of float, optional
     The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
-)doc")
-        .def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("relative_velocity"),
+)doc");
+    cls.def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("relative_velocity"),
              py::arg("normal_force"), py::arg("initial_state") = py::none())
         .def_static("harmonic", &make_harmonic, py::arg("friction"), py::kw_only(), py::arg("sliding_velocity"),
                     py::arg("velocity_amplitude"), py::arg("frequency"), py::arg("normal_force"),
@@ -276,6 +276,7 @@ initial_state : sequence of float, optional
         .def("__repr__", [](const KinematicRigPy& r) {
             return "KinematicRig(friction=" + std::string(py::repr(law_or_hysteretic_to_python(r.friction))) + ")";
         });
+    return std::move(cls);
 }
 
 }  // namespace frictionsim::python

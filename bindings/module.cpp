@@ -63,9 +63,8 @@ PYBIND11_MODULE(_core, m) {
     register_laws(m);
     register_callable_law(m);
     register_results(m);
-    register_axial(m);
-    register_kinematic(m);
     register_contact(m);
-    register_torsional(m);
+    // the rigs simulate() runs: each register_* binds one and hands its class back
+    m.attr("RIGS") = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m));
     guard_construction(m);
 }

@@ -97,7 +97,7 @@ py::array_t<double> per_row(const TorsionalDrillStringRig& r, py::array_t<double
 
 }  // namespace
 
-void register_torsional(py::module_& m) {
+py::object register_torsional(py::module_& m) {
     const HystereticFriction::Params hd;
     py::class_<HystereticFriction>(m, "HystereticFriction", R"doc(
 Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]
@@ -235,6 +235,7 @@ Keywords
                  return per_row(r, states, mode, [](const auto& s, const double* x, int md) { return s.disc_acceleration(x, md); });
              },
              py::arg("states"), py::arg("mode"), "dw2/dt [rad/s^2] for each row in its recorded mode.");
+    return std::move(cls);
 }
 
 }  // namespace frictionsim::python

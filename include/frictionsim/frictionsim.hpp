@@ -18,6 +18,7 @@
 #include "rigs/kinematic_rig.hpp"
 #include "papers.hpp"
 #include "rigs/reference_setups.hpp"
+#include "rigs/rigs.hpp"
 #include "rigs/signals.hpp"
 #include "rigs/torsional_rig.hpp"
 #include "solve/dormand_prince.hpp"

@@ -77,8 +77,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
     KeyboardInterrupt
         Ctrl-C, or raised by a Python callable of the rig (propagated unchanged, as is SystemExit).
     """
-    if not isinstance(rig, (_core.AxialVibrationRig, _core.KinematicRig, _core.TorsionalRig)):
-        raise TypeError(f"rig must be an AxialVibrationRig, a KinematicRig or a TorsionalRig, got {type(rig).__name__}")
+    if not isinstance(rig, _core.RIGS):
+        names = ", ".join(cls.__name__ for cls in _core.RIGS)
+        raise TypeError(f"rig must be one of the engine's rigs ({names}), got {type(rig).__name__}")
     if not isinstance(method, str) or method not in METHODS:
         raise InvalidParameterError(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
     options = _core.SolverOptions()

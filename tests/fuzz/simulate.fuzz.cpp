@@ -65,44 +65,42 @@ SolverOptions options(Bytes& in) {
     return o;
 }
 
+/// A parameter struct from the bytes: each field of its table either keeps its default or takes a number.
+template <class Params, class Fields>
+Params params_from(const Fields& fields, Bytes& in) {
+    Params p{};
+    for (const auto& f : fields)
+        if (in.byte() & 1) p.*(f.member) = in.number();
+    return p;
+}
+
 template <class Law>
 void run_rigs(const Law& law, Bytes& in) {
     const SolverOptions o = options(in);
     const double t_end = in.byte() & 1 ? in.number() : 0.05;
-    switch (in.byte() % 3) {
-        case 0: {
-            AxialRigParams p;
-            p.mass = in.number();
-            p.frequency = in.number();
-            p.normal_force = in.number();
-            require_finite(simulate(AxialRig<Law>(p, law), t_end, o));
-            break;
+    const std::size_t which = in.byte() % (TabledRigs::size + 1);
+    if (which == TabledRigs::size) {  // the kinematic rig, built from signals
+        if constexpr (Law::has_stick) {
+            if (law.karnopp_band() > 0.0) return;  // rejected by the kinematic rig; checked elsewhere
         }
-        case 1: {
-            if constexpr (Law::has_stick) {
-                if (law.karnopp_band() > 0.0) return;  // rejected by the kinematic rig; checked elsewhere
-            }
-            const HarmonicSlidingVelocity v(in.number(), in.number(), in.number());
-            require_finite(simulate(KinematicRig<Law, HarmonicSlidingVelocity>(law, v, ConstantSignal(in.number())),
-                                    t_end, o));
-            break;
-        }
-        default: {
-            TorsionalRigParams p;
-            p.reference_speed = in.number();
-            p.normal_force = in.number();
-            require_finite(simulate(TorsionalRig<Law>(p, law), t_end, o));
-        }
+        const HarmonicSlidingVelocity v(in.number(), in.number(), in.number());
+        require_finite(simulate(KinematicRig<Law, HarmonicSlidingVelocity>(law, v, ConstantSignal(in.number())),
+                                t_end, o));
+        return;
     }
+    std::size_t i = 0;
+    for_each_rig(TabledRigs{}, [&](auto tag) {
+        using Rig = typename decltype(tag)::template of<Law>;
+        if (i++ != which) return;
+        const auto p = params_from<typename Rig::Params>(Rig::Params::fields(), in);
+        require_finite(simulate(Rig(p, law), t_end, o));
+    });
 }
 
 /// A law of the engine's list from the bytes: each field of its table either keeps its default or takes a number.
 template <class Law>
 Law law_from(Bytes& in) {
-    typename Law::Params p{};
-    for (const auto& f : Law::fields)
-        if (in.byte() & 1) p.*(f.member) = in.number();
-    return Law(p);
+    return Law(params_from<typename Law::Params>(Law::fields, in));
 }
 
 void run(Bytes& in) {

@@ -68,6 +68,7 @@ class AxialRig {
     static constexpr std::size_t Z = Law::state_count;
 
 public:
+    using Params = AxialRigParams;
     static constexpr std::size_t state_size = 2 + Z + 3;
     static constexpr bool stiff = declares_stiff<Law>::value;  ///< picks the integrator under Method::automatic
     static constexpr std::size_t guard_count = Switching::guard_count;

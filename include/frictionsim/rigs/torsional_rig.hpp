@@ -118,6 +118,7 @@ class TorsionalRig {
     static constexpr std::size_t disc_guards = Disc::guard_count;
 
 public:
+    using Params = TorsionalRigParams;
     static constexpr std::size_t state_size = 6 + Z + 5;
     static constexpr std::size_t guard_count = disc_guards + Motor::guard_count;
     static constexpr bool stiff = Disc::stiff;
