@@ -136,7 +136,7 @@ for a required keyword.
     });
     m.attr("FRICTION_LAWS") = py::tuple(laws);
 
-    py::class_<PowerLawCoefficient>(m, "PowerLawCoefficient", R"doc(
+    py::class_<PowerLawCoefficient> power_law(m, "PowerLawCoefficient", R"doc(
 Cycle-averaged dynamic friction coefficient of paper 000 (eq 17, Table 5):
 
     mu_df = eta' (v_a / v_d)^c,   v_a = 2 pi f u0 (eq 16).
@@ -150,7 +150,9 @@ eta : float
     eta' [-], in (0, 10] (Table 5: 0.12-1.07).
 exponent : float
     c [-], in [-2, 2] (negative: more vibration, less friction; Table 5: -0.09 to -0.37).
-)doc")
+)doc");
+    def_field_properties(power_law, PowerLawCoefficient::fields, [](const PowerLawCoefficient& p) { return p.params(); });
+    power_law
         .def(py::init([](double eta, double exponent) {
                  return PowerLawCoefficient(PowerLawCoefficient::Params{eta, exponent});
              }),
@@ -160,8 +162,6 @@ exponent : float
                     "Table 5's eta' and c for 'dry', 'water', 'wbm', 'obm' or 'sbm' (case-insensitive).")
         .def_static("from_eq15", &PowerLawCoefficient::from_eq15, py::arg("eta"), py::arg("exponent"),
                     "From eq 15's mu_df = eta (u0 f / v_d)^c: eta' = eta / (2 pi)^c (eq 17).")
-        .def_property_readonly("eta", [](const PowerLawCoefficient& p) { return p.params().eta; }, "eta' [-].")
-        .def_property_readonly("exponent", [](const PowerLawCoefficient& p) { return p.params().exponent; }, "c [-].")
         .def_readonly_static("fitted_velocity_ratio_min", &PowerLawCoefficient::fitted_velocity_ratio_min)
         .def_readonly_static("fitted_velocity_ratio_max", &PowerLawCoefficient::fitted_velocity_ratio_max)
         .def("coefficient", py::vectorize(&PowerLawCoefficient::coefficient),

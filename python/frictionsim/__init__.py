@@ -63,6 +63,6 @@ def __getattr__(name: str):
     # Submodules with heavier imports (pandas, scipy, matplotlib, PyEMD, dask) load on first use: fs.fit, ...
     import importlib
 
-    if name in ("cli", "contact", "data", "demo", "fit", "plots", "scenario", "signal", "torsional"):
+    if name in ("axial", "cli", "contact", "data", "demo", "fit", "plots", "scenario", "signal", "torsional"):
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'frictionsim' has no attribute {name!r}")

@@ -7,11 +7,11 @@
    ``frictionsim run`` runs it, into ``<out>/fig7_dry/`` and ``<out>/fig7_obm/``.
 2. Friction reduction: the mean friction F_df with vibration against the same case without vibration (u0 = 0,
    F_sf), per law, next to Table 4's measured F_df and F_sf and the Table 5 power law (eq 17) for those runs
-   (``fig7_friction_reduction.csv``).
+   (:func:`frictionsim.axial.table4_comparison`, ``fig7_friction_reduction.csv``).
 3. A sweep over the vibration amplitude (velocity ratio v_d/v_a) as in examples/axial_rig_demo.cpp: the
    closed form 1 - (2/pi) asin(v_d/v_a) of the kinematic Coulomb rig, the simulated kinematic rig, and the axial
-   rig with Coulomb and Dahl friction (``friction_reduction.csv``, the C++ demo's file with more columns, and
-   ``friction_reduction.png``).
+   rig with Coulomb and Dahl friction (:func:`frictionsim.axial.reduction_sweep`; ``friction_reduction.csv``, the
+   C++ demo's file with more columns, and ``friction_reduction.png``).
 4. The Table 5 refit: :func:`frictionsim.fit.fit_power_law` on :func:`frictionsim.data.table4` beside the
    printed Table 5 (``table5_refit.csv``) and the log-log plot of Fig. 11 (``fig11_power_law.png``).
 5. Paper 001, into ``<out>/paper001/``: the built-in scenario ``fig7_torsional`` (the Fig. 7 operating point,
@@ -30,7 +30,6 @@ anything is written (:func:`compute`, then :meth:`Demo.write`).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import time
 from dataclasses import dataclass
@@ -40,8 +39,8 @@ from typing import Dict, List, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
-from .scenario import AnalysisSpec, Case, RigSpec, Scenario, ScenarioRun, SolverSpec, loads, run, run_case
+from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_comparison
+from .scenario import Scenario, ScenarioRun, loads, run
 from .torsional import FIG7 as PAPER001_FIG7
 
 __all__ = ["BUILTIN_SCENARIOS", "Demo", "Paper001", "builtin_scenario", "compute", "format_table", "paper001",
@@ -55,8 +54,6 @@ FIG7 = {"fig7_dry": "fig7_dry_coulomb_vs_dahl", "fig7_obm": "fig7_obm"}
 #: v_d / v_a of the sweep: examples/axial_rig_demo.cpp's ratios (the quick demo takes every other one)
 SWEEP_RATIOS = (0.05, 0.1, 0.2, 0.4, 0.6, 0.8, 0.95, 1.5)
 QUICK_SWEEP_RATIOS = (0.1, 0.4, 0.8, 1.5)
-SWEEP_SETTLE = 8.0  #: s before the 10 averaged cycles of the axial sweep runs (Dahl loads over ~1 mm at 1 mm/s)
-NO_VIBRATION_T_END = 12.0  #: s; without vibration the Dahl force approaches mu F_N with a ~1 s time constant
 
 #: Paper 001: the built-in torsional scenario, and the stick-slip map grid (w_ref [rad/s] x N2 [N]; --quick: smaller)
 PAPER001_SCENARIO = "fig7_torsional"
@@ -127,47 +124,15 @@ def table5_report(refit) -> str:
               "(closest: adjusted R^2; see frictionsim.fit.power_law)")
 
 
-def _table4_row(run_):
-    """Table 4's run with the case's lubricant, u0, f, v_d and F_N, or None."""
-    from .data import table4
-
-    t4, rig = table4(), run_.rig
-    match = t4[(t4["lubricant"] == run_.case.lubricant)
-               & np.isclose(t4["amplitude_m"], float(rig.amplitude))
-               & np.isclose(t4["frequency_hz"], float(rig.frequency))
-               & np.isclose(t4["sliding_velocity_m_per_s"], float(rig.sliding_velocity))
-               & np.isclose(t4["normal_force_n"], float(rig.normal_force))]
-    return match.iloc[0] if len(match) else None
-
-
-def _without_vibration(case: Case) -> Case:
-    """The same case with u0 = 0 (F_sf), long enough to reach steady sliding; mean over the last 10 cycles."""
-    return dataclasses.replace(case, name=f"{case.name}_no_vibration", rig=case.rig.with_params(amplitude=0.0),
-                               solver=dataclasses.replace(case.solver, t_end=NO_VIBRATION_T_END, output_points=2,
-                                                          output_step=None),
-                               analysis=AnalysisSpec(cycles=10))
-
-
 def _reduction_rows(subdir: str, scenario_run: ScenarioRun) -> List[dict]:
+    """Each case beside Table 4 and Table 5 (:func:`frictionsim.axial.table4_comparison`, with the case's rig, law
+    and solver settings)."""
     rows = []
     for r in scenario_run.runs:
-        still = run_case(_without_vibration(r.case))
-        t4 = _table4_row(r)
-        normal, ratio = r.normal_force, r.velocity_ratio
-        power = _core.PowerLawCoefficient.from_table5(r.case.lubricant) if r.case.lubricant else None
-        mu_t5 = float(power.coefficient(ratio, 1.0)) if power is not None else math.nan
-        rows.append({
-            "case": subdir, "law": r.case.friction.label, "table4_run": t4["number"] if t4 is not None else "",
-            "F_N_N": normal, "mu": r.case.friction.mu, "velocity_ratio": ratio,
-            "F_df_sim_N": r.mean_friction, "F_sf_sim_N": still.mean_friction,
-            "reduction_sim_percent": 100.0 * (1.0 - r.mean_friction / still.mean_friction),
-            "mu_df_sim": r.mean_friction / normal,
-            "F_df_table4_N": float(t4["F_df_N"]) if t4 is not None else math.nan,
-            "F_sf_table4_N": float(t4["F_sf_N"]) if t4 is not None else math.nan,
-            "reduction_table4_percent": 100.0 * (1.0 - t4["F_df_N"] / t4["F_sf_N"]) if t4 is not None else math.nan,
-            "mu_df_table4": float(t4["mu_df"]) if t4 is not None else math.nan,
-            "F_df_table5_N": mu_t5 * normal, "mu_df_table5": mu_t5,
-        })
+        case = r.case
+        rows.append({"case": subdir, "law": case.friction.label, **table4_comparison(
+            r.rig.friction, lubricant=case.lubricant, t_end=case.solver.t_end, cycles=case.analysis.cycles,
+            method=case.solver.method, rtol=case.solver.rtol, atol=case.solver.atol, **case.rig.params)})
     return rows
 
 
@@ -179,45 +144,13 @@ REDUCTION_COLUMNS = [("case", "case", "s"), ("law", "law", "s"), ("F_df_sim_N", 
 
 
 def _sweep(dry: ScenarioRun, ratios: Sequence[float]):
-    """Friction reduction 1 - F_df/(mu F_N) against v_d/v_a on the dry Fig. 7 case (axial_rig_demo.cpp)."""
-    import pandas as pd
-
-    coulomb, dahl = (next(r for r in dry.runs if r.case.friction.type == kind) for kind in ("coulomb", "dahl"))
-    rig = coulomb.rig
-    v_d, f, normal, mu = float(rig.sliding_velocity), float(rig.frequency), float(rig.normal_force), \
-        coulomb.case.friction.mu
-    omega, period = 2 * math.pi * f, 1.0 / f
-    table5 = _core.PowerLawCoefficient.from_table5("dry")
-    from .data import table4
-
-    dry_runs = table4()[table4()["lubricant"] == "dry"]
-    rows = []
-    for ratio in sorted(set(ratios) | {v_d / float(rig.vibration_velocity_amplitude)}):
-        v_a = v_d / ratio
-        kinematic = Case(f"kinematic_{ratio:g}", RigSpec("kinematic", {
-            "sliding_velocity": v_d, "velocity_amplitude": v_a, "frequency": f, "normal_force": normal}),
-            coulomb.case.friction, SolverSpec(5 * period, rtol=1e-10, atol=1e-12, output_points=2),
-            AnalysisSpec(transient=0.0, cycles=5))
-        axial = {}
-        for r in (coulomb, dahl):
-            case = dataclasses.replace(
-                r.case, name=f"axial_{r.case.friction.type}_{ratio:g}",
-                rig=r.case.rig.with_params(amplitude=v_a / omega),
-                solver=dataclasses.replace(r.case.solver, t_end=SWEEP_SETTLE + 10 * period, output_points=2),
-                analysis=AnalysisSpec(transient=SWEEP_SETTLE, cycles=10))
-            axial[r.case.friction.type] = 1.0 - run_case(case).mean_friction / (mu * normal)
-        inside = dry_runs["velocity_ratio"].min() <= 1.0 / ratio <= dry_runs["velocity_ratio"].max()
-        measured = dry_runs[np.isclose(dry_runs["velocity_ratio"], 1.0 / ratio, rtol=1e-9)]
-        rows.append({
-            "velocity_ratio": ratio, "velocity_amplitude_m_per_s": v_a, "amplitude_mm": 1e3 * v_a / omega,
-            "coulomb_closed_form": 1.0 - 2.0 / math.pi * math.asin(ratio) if ratio < 1 else 0.0,
-            "kinematic_coulomb": 1.0 - run_case(kinematic).mean_friction / (mu * normal),
-            "axial_coulomb": axial["coulomb"], "axial_dahl": axial["dahl"],
-            "table5_dry": 1.0 - float(table5.coefficient(1.0 / ratio, 1.0)) / mu if inside else math.nan,
-            "table4_dry": float(1.0 - measured["F_df_N"].iloc[0] / measured["F_sf_N"].iloc[0]) if len(measured)
-            else math.nan,
-        })
-    return pd.DataFrame(rows)
+    """Friction reduction 1 - F_df/(mu F_N) against v_d/v_a on the dry Fig. 7 case's rig and laws
+    (:func:`frictionsim.axial.reduction_sweep`, as axial_rig_demo.cpp)."""
+    coulomb = next(r.case for r in dry.runs if r.case.friction.type == "coulomb")
+    laws = {r.case.friction.type: r.rig.friction for r in dry.runs}
+    return reduction_sweep(ratios, mu=coulomb.friction.mu, laws=laws, lubricant=coulomb.lubricant,
+                           method=coulomb.solver.method, rtol=coulomb.solver.rtol, atol=coulomb.solver.atol,
+                           **coulomb.rig.params)
 
 
 SWEEP_COLUMNS = [("velocity_ratio", "v_d/v_a", ".5g"), ("amplitude_mm", "u0 [mm]", ".4g"),

@@ -4,7 +4,7 @@ The same call scales from a laptop to a cluster, because the work is handed to a
 :class:`concurrent.futures.Executor`::
 
     >>> import frictionsim as fs
-    >>> from frictionsim.sweeps import axial_mean_friction
+    >>> from frictionsim.axial import axial_mean_friction
     >>> grid = {"amplitude": [1e-3, 3e-3, 5e-3], "frequency": [10.0, 17.0, 25.0]}   # m, Hz
     >>> result = fs.sweep(axial_mean_friction, grid, fixed={"friction": fs.Dahl(0.41, 4e4)})
     >>> result.as_array()           # F_df [N] on the 3 x 3 (amplitude, frequency) grid
@@ -20,10 +20,10 @@ The same call scales from a laptop to a cluster, because the work is handed to a
   another task that dask would hash as equal).
 
 The points are run in a deterministic order and the values are stored in grid order whatever order they
-finish in, so a sweep gives bit-for-bit the same values on every executor. The ready-made functions
-:func:`axial_mean_friction` and :func:`kinematic_mean_friction` simulate one rig and return its mean friction
-force over whole vibration cycles (F_df of paper 000), e.g. for the friction-reduction map of paper 000 over
-vibration amplitude and frequency.
+finish in, so a sweep gives bit-for-bit the same values on every executor. Ready-made point functions, e.g. for
+the friction-reduction map of paper 000 over vibration amplitude and frequency, are in :mod:`frictionsim.axial`
+(:func:`~frictionsim.axial.axial_mean_friction`, :func:`~frictionsim.axial.kinematic_mean_friction`; still
+importable from here).
 """
 
 from __future__ import annotations
@@ -41,8 +41,8 @@ from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
+from .axial import axial_mean_friction, kinematic_mean_friction  # moved to axial.py; the old names stay
 from .errors import InvalidParameterError
-from .simulation import SOLVER_DEFAULTS
 
 __all__ = [
     "SweepError",
@@ -424,47 +424,3 @@ class SweepResult:
         if "error" in frame:
             frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
         return frame
-
-
-# ---------------------------------------------------------------------------------------------- ready-made functions
-def axial_mean_friction(*, friction: Any, t_end: float = 2.0, transient: float = 1.0, method: str = "automatic",
-                        rtol: float = SOLVER_DEFAULTS.rtol, atol: float = SOLVER_DEFAULTS.atol, **rig_params: Any) -> float:
-    """Mean friction force F_df [N] of one :class:`frictionsim.AxialVibrationRig` run (paper 000, Table 4).
-
-    Builds ``AxialVibrationRig(friction=friction, **rig_params)`` (``mass`` [kg], ``drive_stiffness`` [N/m],
-    ``sliding_velocity`` v_d [m/s], ``amplitude`` A [m], ``frequency`` f [Hz], ``normal_force`` N [N], ...),
-    simulates it to ``t_end`` [s] and returns the mean friction force over the whole vibration cycles after
-    ``transient`` [s]. Top-level and picklable: pass it to :func:`sweep`, e.g. over amplitude and frequency for
-    a friction-reduction map (reduction 1 - F_df / (mu N) for a Coulomb law).
-    """
-    from . import AxialVibrationRig, _core, simulate
-
-    rig = AxialVibrationRig(friction=friction, **rig_params)
-    if not (math.isfinite(float(t_end)) and t_end > 0):
-        raise InvalidParameterError(f"axial_mean_friction: t_end must be positive and finite (got {t_end!r})",
-                                    "t_end")
-    # Only the window's ends are recorded (dense output): the mean comes from the friction impulse there, and a
-    # sweep point copies two rows instead of every step's (half the time of a 2-s point, all of it GIL-free).
-    t_a, t_b, _ = _core.whole_cycle_window(0.0, float(t_end), rig.period, float(transient))
-    result = simulate(rig, t_end, method=method, rtol=rtol, atol=atol, output_times=[t_a, t_b])
-    return result.mean_over_cycles()  # the record is exactly those whole cycles
-
-
-def kinematic_mean_friction(*, friction: Any, sliding_velocity: float, velocity_amplitude: float, frequency: float,
-                            normal_force: float, t_end: Optional[float] = None, transient: float = 0.0,
-                            method: str = "automatic", rtol: float = SOLVER_DEFAULTS.rtol, atol: float = SOLVER_DEFAULTS.atol) -> float:
-    """Mean friction force [N] of a prescribed-motion contact, v_r = v_d - v_a cos(2 pi f t) (paper 000, eqs 8-9).
-
-    Builds :meth:`frictionsim.KinematicRig.harmonic` with ``sliding_velocity`` v_d [m/s],
-    ``velocity_amplitude`` v_a [m/s], ``frequency`` f [Hz] and ``normal_force`` N [N], simulates it to
-    ``t_end`` [s] (default: ``transient`` plus 10 periods) and returns the mean friction force over the whole
-    cycles after ``transient`` [s]. For Coulomb friction and v_d < v_a this is (2/pi) asin(v_d/v_a) mu N.
-    """
-    from . import KinematicRig, simulate
-
-    rig = KinematicRig.harmonic(friction, sliding_velocity=sliding_velocity, velocity_amplitude=velocity_amplitude,
-                                frequency=frequency, normal_force=normal_force)
-    if t_end is None:
-        t_end = transient + 10.0 * rig.period
-    result = simulate(rig, t_end, method=method, rtol=rtol, atol=atol)
-    return result.mean_over_cycles(transient=transient)

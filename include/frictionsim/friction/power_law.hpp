@@ -25,6 +25,7 @@
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
+#include "../parameters.hpp"
 
 namespace frictionsim {
 
@@ -96,6 +97,8 @@ inline double vibration_velocity_amplitude(double amplitude, double frequency) {
 
 /// mu_df = eta' (v_a / v_d)^c (paper 000, eq 17). See the header comment for the range it was fitted over.
 struct PowerLawCoefficient {
+    static constexpr const char* who = "PowerLawCoefficient";
+
     struct Params {
         double eta;       ///< eta' [-]: the prefactor of eq 17 and Table 5 (eq 15's eta is eta' (2 pi)^c)
         double exponent;  ///< c [-]: negative when vibration reduces friction more as v_a/v_d grows
@@ -110,16 +113,21 @@ struct PowerLawCoefficient {
     /// (v_a/v_d)^-1 at large ratios, Table 5's exponents are -0.09 to -0.37, and c = 1e300 returned inf before.
     static constexpr double max_eta = 10.0;
     static constexpr double max_exponent_magnitude = 2.0;
+    static constexpr std::array<Field<Params>, 2> fields{{
+        {"eta", "eta'", "-",
+         Rule::interval(0.0, max_eta, true, false).because("it is mu_df at v_a = v_d; Table 5: 0.12 to 1.07"),
+         &Params::eta, "Prefactor of eq 17 (eq 15's eta is eta' (2 pi)^c).", nullptr, true},
+        {"exponent", "c", "-",
+         Rule::interval(-max_exponent_magnitude, max_exponent_magnitude).because("Table 5: -0.09 to -0.37"),
+         &Params::exponent, "Exponent of v_a / v_d: negative when vibration reduces friction.", nullptr, true},
+    }};
 
-    explicit PowerLawCoefficient(Params params) : params_(params) {
-        require_eta(params_.eta);
-        require_exponent(params_.exponent);
-    }
+    explicit PowerLawCoefficient(Params params) : params_(params) { validate_fields(who, params_, fields); }
 
     /// From eq 15's form mu_df = eta (u_0 f / v_d)^c: eta' = eta / (2 pi)^c (eq 17), in the constructor's range.
     static PowerLawCoefficient from_eq15(double eta, double exponent) {
         detail::require_positive(who, "eta", eta);
-        require_exponent(exponent);
+        validate_fields(who, Params{1.0, exponent}, fields);
         const double eta_prime = eta / std::pow(2.0 * pi, exponent);
         if (!(eta_prime <= max_eta))
             detail::reject(who, "eta", "such that eta' = eta / (2 pi)^c is at most 10", eta);
@@ -167,19 +175,6 @@ struct PowerLawCoefficient {
     }
 
 private:
-    static constexpr const char* who = "PowerLawCoefficient";
-
-    static void require_eta(double eta) {
-        detail::require_positive(who, "eta", eta);
-        if (!(eta <= max_eta))
-            detail::reject(who, "eta", "at most 10 (it is mu_df at v_a = v_d; Table 5: 0.12 to 1.07)", eta);
-    }
-
-    static void require_exponent(double exponent) {
-        if (!(std::abs(exponent) <= max_exponent_magnitude))
-            detail::reject(who, "exponent", "in [-2, 2] (Table 5: -0.09 to -0.37)", exponent);
-    }
-
     Params params_;
 };
 
