@@ -13,6 +13,7 @@
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
+#include "rig_checks.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
@@ -220,29 +221,7 @@ TEST_CASE("GMS parameter rules: each field rejected naming it, the weights must 
     CHECK_NOTHROW(GMS(GMS::Params{}));
 }
 
-namespace {
-template <class Law>
-void check_energy_balance(const AxialRig<Law>& rig, Method method, double t_end) {  // as tests/axial_rig.test.cpp
-    SolverOptions o;
-    o.method = method;
-    o.rtol = 1e-10;
-    o.atol = 1e-13;
-    o.output_times = {0.0, 0.25 * t_end, 0.5 * t_end, t_end};
-    const Result r = simulate(rig, t_end, o);
-    const std::size_t drive = r.column("drive_work"), friction = r.column("friction_work");
-    std::vector<double> x0(r.state_count());
-    for (std::size_t c = 0; c < r.state_count(); ++c) x0[c] = r.state(0, c);
-    const double e0 = rig.mechanical_energy(0.0, x0.data());
-    for (std::size_t i = 1; i < r.rows(); ++i) {
-        const double* x = &r.states[i * r.state_count()];
-        const double stored = rig.mechanical_energy(r.t[i], x) - e0;
-        const double balance = r.state(i, drive) - stored - r.state(i, friction);
-        INFO("t = " << r.t[i] << ": drive " << r.state(i, drive) << ", stored " << stored << ", friction "
-                    << r.state(i, friction));
-        CHECK(std::abs(balance) < 1e-6 * (std::abs(r.state(i, friction)) + std::abs(stored) + 1e-3));
-    }
-}
-}  // namespace
+using frictionsim::test::check_energy_balance;
 
 TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work; the blocks never give energy back "
           "beyond what their springs store",
