@@ -99,7 +99,7 @@ py::array_t<double> per_row(const TorsionalDrillStringRig& r, py::array_t<double
 
 py::object register_torsional(py::module_& m) {
     const HystereticFriction::Params hd;
-    py::class_<HystereticFriction>(m, "HystereticFriction", R"doc(
+    py::class_<HystereticFriction> hysteretic(m, "HystereticFriction", R"doc(
 Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]
 with acceleration al [rad/s^2]:
 
@@ -126,18 +126,16 @@ branch_gap : {"hold", "error"}
     accelerating level P0(w) at al = 0; eq 6 has no case for it): "hold" keeps al = 0 with the set-valued
     torque in [N0, P0] (Filippov) until the shaft torque leaves the gap; "error" stops the run with a
     SimulationError that names the time, speed and torques.
-)doc")
+)doc");
+    def_field_properties(hysteretic, HystereticFriction::fields, [](const HystereticFriction& h) { return h.params(); });
+    hysteretic
         .def(py::init(&make_hysteretic), py::arg("stick_slope"), py::arg("accelerating"), py::arg("decelerating"),
              py::arg("stick_speed") = hd.stick_speed, py::arg("reference_normal_force") = hd.reference_normal_force,
              py::arg("branch_gap") = "hold")
-        .def_property_readonly("stick_slope", [](const HystereticFriction& h) { return h.params().stick_slope; })
-        .def_property_readonly("stick_speed", [](const HystereticFriction& h) { return h.params().stick_speed; })
         .def_property_readonly("accelerating", [](const HystereticFriction& h) { return to_tuple(h.params().accelerating); },
                                "(p00, p10, p01, p20, p11, p02)")
         .def_property_readonly("decelerating", [](const HystereticFriction& h) { return to_tuple(h.params().decelerating); },
                                "(n00, n10, n01, n20, n11, n02)")
-        .def_property_readonly("reference_normal_force",
-                               [](const HystereticFriction& h) { return h.params().reference_normal_force; })
         .def_property_readonly("branch_gap", [](const HystereticFriction& h) { return branch_gap_name(h.params().branch_gap); })
         .def("_torque", py::vectorize([](HystereticFriction& h, double w, double al, double normal_force) {
                  return h.torque(w, al, normal_force);

@@ -944,6 +944,7 @@ class HystereticFriction:
         torque in [N0, P0] (Filippov) until the shaft torque leaves the gap; "error" stops the run with a
         SimulationError that names the time, speed and torques.
     """
+    parameters: typing.ClassVar[tuple]
     def __init__(self, stick_slope: typing.SupportsFloat | typing.SupportsIndex, accelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], decelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], stick_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, reference_normal_force: typing.SupportsFloat | typing.SupportsIndex = 35.0, branch_gap: str = 'hold') -> None:
         ...
     def __reduce__(self) -> tuple:
@@ -977,13 +978,19 @@ class HystereticFriction:
         """
     @property
     def reference_normal_force(self) -> float:
-        ...
+        """
+        N_ref [N]: The normal force the coefficients were fitted at (the torque scales with N / N_ref).
+        """
     @property
     def stick_slope(self) -> float:
-        ...
+        """
+        a [N m s/rad]: Stick band T = a w (break-away torque a w_s).
+        """
     @property
     def stick_speed(self) -> float:
-        ...
+        """
+        w_s [rad/s]: Half-width of the stick band (eq 6).
+        """
 class TorsionalRig:
     """
     The torsional drill-string rig of paper 001 (eqs 1-5): disc D2 on a shaft (k2, d2), driven through a gear

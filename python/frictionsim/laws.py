@@ -56,13 +56,15 @@ class Parameter(NamedTuple):
 @functools.lru_cache(maxsize=None)
 def parameters(source: Any, skip: Tuple[str, ...] = ("self", "friction")) -> Tuple[Parameter, ...]:
     """The keyword parameters of ``source`` (an engine class, or a Python function), in signature order, without
-    those named in ``skip``: the class's ``parameters`` records where the engine exports them (numbers), else its
-    signature."""
+    those named in ``skip``: every keyword of its signature, each described by the class's ``parameters`` record
+    where the engine's table has one (the numbers), else as the signature gives it (switches, polynomials)."""
     records = getattr(source, "parameters", None)
-    if isinstance(records, (list, tuple)) and records:
-        found = [Parameter(r.name, r.default, bool(r.required), _kind_of(r.default)) for r in records]
-    else:
-        found = _from_signature(source)
+    tabled = {}
+    if isinstance(records, (list, tuple)):
+        tabled = {r.name: Parameter(r.name, r.default, bool(r.required), _kind_of(r.default)) for r in records}
+    # the signature lists every keyword; the table, where there is one, is what its numbers are
+    signature = _from_signature(source)
+    found = [tabled.get(p.name, p) for p in signature] if signature else list(tabled.values())
     return tuple(p for p in found if p.name not in skip)
 
 

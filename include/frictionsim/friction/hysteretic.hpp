@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "../detail/validate.hpp"
+#include "../parameters.hpp"
 
 namespace frictionsim {
 
@@ -56,6 +57,15 @@ public:
         double reference_normal_force = 35.0; ///< N_ref, N: the normal force the coefficients were fitted at
         BranchGap branch_gap = BranchGap::hold;
     };
+    /// The scalar parameters; the two branch polynomials (six coefficients each, every one finite, the level at
+    /// w_s positive) and branch_gap are checked in the constructor.
+    static constexpr std::array<Field<Params>, 3> fields{{
+        {"stick_slope", "a", "N m s/rad", Rule::positive(), &Params::stick_slope,
+         "Stick band T = a w (break-away torque a w_s).", nullptr, true},
+        {"stick_speed", "w_s", "rad/s", Rule::positive(), &Params::stick_speed, "Half-width of the stick band (eq 6)."},
+        {"reference_normal_force", "N_ref", "N", Rule::positive(), &Params::reference_normal_force,
+         "The normal force the coefficients were fitted at (the torque scales with N / N_ref)."},
+    }};
 
     /// One branch's quadratic J_eff-form at speed u = |w| > 0 and shaft torque S' = sgn(w) S:
     ///   A b^2 + B b + C = 0,  b = sgn(w) al,  A = k c02, B = J + k (c01 + c11 u), C = k level(u) - S'.
@@ -72,9 +82,7 @@ public:
     };
 
     explicit HystereticFriction(const Params& p) : p_(p) {
-        detail::require_positive(name, "stick_slope", p.stick_slope);
-        detail::require_positive(name, "stick_speed", p.stick_speed);
-        detail::require_positive(name, "reference_normal_force", p.reference_normal_force);
+        validate_fields(name, p, fields);
         static constexpr std::array<const char*, 6> p_names{"p00", "p10", "p01", "p20", "p11", "p02"};
         static constexpr std::array<const char*, 6> n_names{"n00", "n10", "n01", "n20", "n11", "n02"};
         const auto check = [](const BranchPolynomial& c, const std::array<const char*, 6>& names) {
