@@ -117,8 +117,8 @@ class Result:
 
     def __repr__(self) -> str:
         status = "completed" if self.completed else f"stopped at t = {self.t_reached:g} s"
-        return (f"Result({len(self.t)} rows, t = [{self.t[0]:g}, {self.t[-1]:g}] s, states = {self.state_names}, "
-                f"{len(self.events)} events, {status})")
+        span = f"t = [{self.t[0]:g}, {self.t[-1]:g}] s" if len(self.t) else "no rows"  # a run that failed at once
+        return f"Result({len(self.t)} rows, {span}, states = {self.state_names}, {len(self.events)} events, {status})"
 
     # ------------------------------------------------------------------ analysis
     def mean_over_cycles(self, period: Optional[float] = None, transient: float = 0.0,

@@ -334,3 +334,16 @@ def test_a_lambda_fails_with_pickles_own_error():
     law = fs.CallableLaw(lambda v_r, normal_force, z: 0.0)
     with pytest.raises((pickle.PicklingError, AttributeError), match="lambda"):
         pickle.dumps(law)
+
+
+def test_a_run_that_fails_at_its_first_evaluation_has_a_printable_empty_partial():
+    def broken(v_r, normal_force, z):
+        raise RuntimeError("no force model yet")
+
+    rig = fs.KinematicRig.harmonic(fs.CallableLaw(broken), sliding_velocity=1e-3, velocity_amplitude=0.1,
+                                   frequency=17.0, normal_force=90.0)
+    with pytest.raises(RuntimeError, match="no force model yet") as info:
+        fs.simulate(rig, 0.1)
+    partial = info.value.partial
+    assert len(partial.t) == 0 and not partial.completed
+    assert "0 rows, no rows" in repr(partial)
