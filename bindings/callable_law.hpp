@@ -76,6 +76,5 @@ void resolve_callable_law_method(const System& system, SolverOptions& options) {
     }
 }
 
-void register_callable_law(py::module_& m);
 
 }  // namespace frictionsim::python

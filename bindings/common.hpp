@@ -84,6 +84,7 @@ private:
 
 void register_errors(py::module_& m);
 void register_laws(py::module_& m);
+void register_callable_law(py::module_& m);
 void register_results(py::module_& m);
 py::object register_axial(py::module_& m);
 py::object register_kinematic(py::module_& m);
