@@ -172,3 +172,27 @@ def test_weights_must_sum_to_one():
         law(block_weight_1=0.2)
     assert info.value.parameter == "block_weight_4"
     law(block_weight_1=0.1 + 1e-12)  # rounding of decimal inputs is not an error
+
+
+def test_scenario_files_name_it_by_its_key_on_every_rig():
+    """A scenario's friction table takes GMS's table keys (type = its key); no scenario code names the law."""
+    keys = ", ".join(f"{p.name} = {getattr(law(), p.name)!r}" for p in fs.GeneralizedMaxwellSlip.parameters)
+    text = ('rig = { type = "kinematic", normal_force = 10.0, sliding_velocity = 2e-3, velocity_amplitude = 1e-2, '
+            'frequency = 5.0 }\nsolver = { t_end = 1.0, rtol = 1e-9, atol = 1e-15, output_points = 1001 }\n'
+            'analysis = { cycles = 3 }\n[[case]]\nname = "gms"\nfriction = { type = "gms", ' + keys + ' }\n')
+    parsed = fs.scenario.loads(text, source="gms.toml")
+    case = parsed.cases[0]
+    assert repr(case.friction.build()) == repr(law())
+    run = fs.scenario.run_case(case)
+    rig = fs.KinematicRig.harmonic(law(), sliding_velocity=2e-3, velocity_amplitude=1e-2, frequency=5.0,
+                                   normal_force=N)
+    t_a, _, cycles = case.window()
+    result = fs.simulate(rig, 1.0, rtol=1e-9, atol=1e-15, output_times=case.output_times())
+    assert run.mean_friction == pytest.approx(result.mean_over_cycles(transient=t_a, cycles=cycles), rel=1e-9)
+    for rig_table in ('{ type = "axial" }', '{ type = "torsional" }'):
+        other = fs.scenario.loads(f'rig = {rig_table}\nsolver = {{ t_end = 0.5 }}\n'
+                                  f'friction = {{ type = "gms", {keys} }}\n')
+        assert isinstance(other.cases[0].build().friction, fs.GeneralizedMaxwellSlip)
+    with pytest.raises(fs.scenario.ScenarioError) as info:  # the table's rule, at the file's key
+        fs.scenario.loads(text.replace("attraction = ", "attraction = -"), source="gms.toml")
+    assert info.value.key == "case[1].friction.attraction" and "positive" in str(info.value)
