@@ -4,6 +4,11 @@
 #include <vector>
 
 #include <frictionsim/simulate.hpp>
+// The paths these headers had before issue 12 still build: they forward to contact/ and solve/ (each with a
+// #pragma message naming the new path).
+#include <frictionsim/rigs/contact_switching.hpp>
+#include <frictionsim/rigs/disc_contact.hpp>
+#include <frictionsim/solve/simulate.hpp>
 
 #include "catch.hpp"
 

@@ -13,6 +13,7 @@ summaries and plots differ), and its ``[analysis]`` keys are the analysis's:
 
 from __future__ import annotations
 
+import abc
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -144,7 +145,7 @@ class LimitCycleRun(_Run):
 
 
 # -------------------------------------------------------------------------------------------------- analyses
-class Analysis:
+class Analysis(abc.ABC):
     """What a scenario's ``[analysis]`` takes (:attr:`keys`), how it is checked, what a run measures, which summary
     columns ``frictionsim run`` prints and how the plots are drawn."""
 
@@ -165,30 +166,30 @@ class Analysis:
         """Raise ``parser.error(...)`` where ``case``'s analysis cannot work (``paths``: key -> dotted path, with
         "_section" and "t_end")."""
 
+    @abc.abstractmethod
     def window(self, case) -> Tuple[float, float, int]:
         """(t_a, t_b, cycles): the whole vibration cycles [s] a case's mean is taken over."""
-        raise NotImplementedError
 
     def output_times(self, case) -> np.ndarray:
         """The output times [s] of ``case``'s run."""
         return case.solver.grid()
 
+    @abc.abstractmethod
     def measure(self, case, rig, result, wall_time: float):
         """The run record of a completed simulation."""
-        raise NotImplementedError
 
+    @abc.abstractmethod
     def summary_columns(self, summary) -> List[Tuple[str, str, str]]:
         """(column, header, format) of the summary table ``frictionsim run`` prints."""
-        raise NotImplementedError
 
     def plot_window(self, runs: Sequence[Any], plot_window: Window) -> Window:
         """The time window [s] of every plot (None: each plot has its own default)."""
         return plot_window
 
+    @abc.abstractmethod
     def write_plots(self, runs: Sequence[Any], traces: Sequence, wanted: Sequence[str], directory: Path, *,
                     title: str, plot_window: Window) -> List[Path]:
         """Write the PNGs of ``wanted`` into ``directory``; ``traces`` are (label, timeseries) per run."""
-        raise NotImplementedError
 
 
 class CycleMean(Analysis):
