@@ -49,8 +49,8 @@ struct OscillatorWithJacobian : Oscillator {
     }
 };
 
-static_assert(!frictionsim::detail::cvode::has_jacobian<Oscillator>::value);
-static_assert(frictionsim::detail::cvode::has_jacobian<OscillatorWithJacobian>::value);
+static_assert(!frictionsim::has_dense_jacobian_v<Oscillator>);
+static_assert(frictionsim::has_dense_jacobian_v<OscillatorWithJacobian>);
 
 /// x' = +1 in mode 0, -1 in mode 1. Guard 0: x - 0.5 (rising only); guard 1: x - 0.25 (falling only).
 struct Ramp {

@@ -163,8 +163,8 @@ TEST_CASE("axial rig Jacobian: CVODE BDF reaches the same answer with it as with
         using AxialRig<Dahl>::AxialRig;
         void jacobian() const = delete;
     };
-    static_assert(detail::cvode::has_jacobian<AxialRig<Dahl>>::value);
-    static_assert(!detail::cvode::has_jacobian<WithoutJacobian>::value);
+    static_assert(has_dense_jacobian_v<AxialRig<Dahl>>);
+    static_assert(!has_dense_jacobian_v<WithoutJacobian>);
     AxialRigParams p;
     SolverOptions o;
     o.method = Method::cvode_bdf;

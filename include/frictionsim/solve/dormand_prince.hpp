@@ -17,6 +17,7 @@
 #include "hybrid_system.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "system_size.hpp"
 
 namespace frictionsim {
 
@@ -27,7 +28,8 @@ template <class S, class = void>
 struct has_rhs_guards : std::false_type {};
 template <class S>
 struct has_rhs_guards<S, std::void_t<decltype(std::declval<const S&>().rhs_guards(
-                             0.0, std::declval<const double*>(), 0, std::declval<double*>(), std::declval<double*>()))>>
+                             0.0, std::declval<const double*>(), std::declval<const system_mode_t<S>&>(),
+                             std::declval<double*>(), std::declval<double*>()))>>
     : std::true_type {};
 }  // namespace detail
 
@@ -50,19 +52,32 @@ struct has_rhs_guards<S, std::void_t<decltype(std::declval<const S&>().rhs_guard
 #define FRICTIONSIM_DETAIL_NOINLINE
 #endif
 
+// The per-state loops' bound inside DormandPrince: a constant expression for fixed-size systems (so that `GCC
+// unroll` applies), the run's state count otherwise. #undef'd at the end.
+#define FRICTIONSIM_DETAIL_STATES (kFixed ? kStates : n_)
+
 template <class System>
 class DormandPrince {
 public:
-    static constexpr std::size_t N = System::state_size;
-    static constexpr std::size_t G = System::guard_count;
-    using State = std::array<double, N>;
+    using State = StateArray<System>;
+    using Guards = GuardArray<System>;
+    using Mode = system_mode_t<System>;
 
-    DormandPrince(const System& system, const SolverOptions& options) : sys_(system), opt_(options) {}
+    DormandPrince(const System& system, const SolverOptions& options)
+        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)) {
+        for (State* v : {&y_, &y1_, &ytmp_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &rc1_, &rc2_, &rc3_, &rc4_, &rc5_})
+            *v = make_state_array(system);
+        for (Guards* v : {&stage_g_[0], &stage_g_[1], &stage_g_[2], &stage_g_[3], &end_g_, &g_, &g1_, &reference_,
+                          &g_lo_, &g_k_, &g_scratch_})
+            *v = make_guard_array(system);
+        masked_ = make_guard_array<System, bool>(system);
+        roots_ = make_guard_array<System, int>(system);
+    }
 
-    void restart(double t, const double* x, int mode) {
+    void restart(double t, const double* x, const Mode& mode) {
         t_ = t_prev_ = t;
         mode_ = mode;
-        std::copy(x, x + N, y_.begin());
+        std::copy(x, x + n(), y_.begin());
         rhs(t_, y_, k1_);
         // Start from the last accepted step: at a switch the right-hand side jumps (or kinks) but its time scales
         // rarely change, and Hairer's starting guess from one Euler step would ramp up from far below them. A
@@ -71,8 +86,8 @@ public:
         log_facold_ = kLogFacoldMin;
         last_rejected_ = false;
         guards(t_, y_, g_);
-        for (std::size_t i = 0; i < G; ++i) masked_[i] = g_[i] == 0.0;
-        roots_.fill(0);
+        for (std::size_t i = 0; i < G(); ++i) masked_[i] = g_[i] == 0.0;
+        std::fill(roots_.begin(), roots_.end(), 0);
         ++stats_.restarts;
     }
 
@@ -101,7 +116,7 @@ public:
     void interpolate(double t, double* x) const {
         const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i)
             x[i] = rc1_[i] + s * (rc2_[i] + s1 * (rc3_[i] + s * (rc4_[i] + s1 * rc5_[i])));
     }
 
@@ -112,13 +127,30 @@ public:
     SolverStats stats() const { return stats_; }
 
 private:
+    static constexpr bool kFixed = has_fixed_size_v<System>;
+    static constexpr std::size_t kStates = [] {
+        if constexpr (has_fixed_size_v<System>) return System::state_size;
+        else return std::size_t{0};
+    }();
+    /// States and guards: compile-time constants for the lab rigs (the loops below unroll: `GCC unroll` needs the
+    /// bound as a constant expression in the loop itself), else the run's sizes.
+    std::size_t n() const { return FRICTIONSIM_DETAIL_STATES; }
+    std::size_t G() const {
+        if constexpr (kFixed) return System::guard_count;
+        else return g_count_;
+    }
+    static constexpr bool kNoGuards = [] {
+        if constexpr (has_fixed_size_v<System>) return System::guard_count == 0;
+        else return false;
+    }();
+
     // Dormand-Prince 5(4) tableau.
     /// Points per step (the end included) at which the guards are checked on the dense output.
     static constexpr int kScanPoints = 4;
     /// With rhs_guards, the guards come free with the stages (c = 0.2, 0.3, 0.8, 8/9 and the end, exact there):
     /// those values and one dense-output point in their widest gap (0.3 to 0.8) leave no gap over h/4, as the
     /// uniform scan does, and the full scan runs only when one of them shows a crossing.
-    static constexpr bool kStageGuards = G > 0 && detail::has_rhs_guards<System>::value;
+    static constexpr bool kStageGuards = !kNoGuards && detail::has_rhs_guards<System>::value;
     static constexpr double kGapPoint = 0.55;
     static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
     static constexpr double a21 = 1.0 / 5;
@@ -144,7 +176,7 @@ private:
         ++stats_.rhs_evaluations;
     }
     /// A stage: the right-hand side, and with rhs_guards the guards at the stage too (into g).
-    void stage(double t, const State& x, State& dxdt, std::array<double, G>& g) {
+    void stage(double t, const State& x, State& dxdt, Guards& g) {
         if constexpr (kStageGuards) {
             sys_.rhs_guards(t, x.data(), mode_, dxdt.data(), g.data());
             ++stats_.rhs_evaluations;
@@ -153,8 +185,9 @@ private:
             rhs(t, x, dxdt);
         }
     }
-    void guards(double t, const State& x, std::array<double, G>& g) {
-        if constexpr (G > 0) {
+    void guards(double t, const State& x, Guards& g) {
+        if constexpr (!kNoGuards) {
+            if (G() == 0) return;
             sys_.guards(t, x.data(), mode_, g.data());
             ++stats_.guard_evaluations;
         }
@@ -170,7 +203,7 @@ private:
     /// Euler step, linear dense output, no guard scan (no crossing can be resolved inside it).
     StepResult cross_tiny_span(double t_stop) {
         const double h = t_stop - t_;
-        for (std::size_t i = 0; i < N; ++i) {
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
             y1_[i] = y_[i] + h * k1_[i];
             rc1_[i] = y_[i];
             rc2_[i] = y1_[i] - y_[i];
@@ -196,17 +229,17 @@ private:
     // Hairer's starting step: a guess from |y|/|f|, refined by one explicit Euler step.
     double initial_step(double t_stop) {
         double dnf = 0.0, dny = 0.0;
-        for (std::size_t i = 0; i < N; ++i) {
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
             const double sk = scale(i, y_[i], 0.0);
             dnf += (k1_[i] / sk) * (k1_[i] / sk);
             dny += (y_[i] / sk) * (y_[i] / sk);
         }
         double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : 0.01 * std::sqrt(dny / dnf);
         h = std::min({h, opt_.max_step, t_stop - t_});
-        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * k1_[i];
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) ytmp_[i] = y_[i] + h * k1_[i];
         rhs(t_ + h, ytmp_, k2_);
         double der2 = 0.0;
-        for (std::size_t i = 0; i < N; ++i) {
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
             const double d = (k2_[i] - k1_[i]) / scale(i, y_[i], 0.0);
             der2 += d * d;
         }
@@ -218,41 +251,41 @@ private:
     // One trial step of size h from (t_, y_): fills k2..k7 and y1_, returns the scaled error norm.
     FRICTIONSIM_DETAIL_NOINLINE double attempt(double h) {
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * a21 * k1_[i];
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) ytmp_[i] = y_[i] + h * a21 * k1_[i];
         stage(t_ + c2 * h, ytmp_, k2_, stage_g_[0]);
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a31 * k1_[i] + a32 * k2_[i]);
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) ytmp_[i] = y_[i] + h * (a31 * k1_[i] + a32 * k2_[i]);
         stage(t_ + c3 * h, ytmp_, k3_, stage_g_[1]);
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i) ytmp_[i] = y_[i] + h * (a41 * k1_[i] + a42 * k2_[i] + a43 * k3_[i]);
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) ytmp_[i] = y_[i] + h * (a41 * k1_[i] + a42 * k2_[i] + a43 * k3_[i]);
         stage(t_ + c4 * h, ytmp_, k4_, stage_g_[2]);
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i)
             ytmp_[i] = y_[i] + h * (a51 * k1_[i] + a52 * k2_[i] + a53 * k3_[i] + a54 * k4_[i]);
         stage(t_ + c5 * h, ytmp_, k5_, stage_g_[3]);
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i)
             ytmp_[i] = y_[i] + h * (a61 * k1_[i] + a62 * k2_[i] + a63 * k3_[i] + a64 * k4_[i] + a65 * k5_[i]);
         rhs(t_ + h, ytmp_, k6_);
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i)
             y1_[i] = y_[i] + h * (a71 * k1_[i] + a73 * k3_[i] + a74 * k4_[i] + a75 * k5_[i] + a76 * k6_[i]);
         stage(t_ + h, y1_, k7_, end_g_);  // with rhs_guards: the guards at the step's end, exactly
         double err = 0.0;
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i) {
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
             const double e =
                 h * (e1 * k1_[i] + e3 * k3_[i] + e4 * k4_[i] + e5 * k5_[i] + e6 * k6_[i] + e7 * k7_[i]);
             const double r = e / scale(i, y_[i], y1_[i]);
             err += r * r;
         }
-        err = std::sqrt(err / static_cast<double>(N));
+        err = std::sqrt(err / static_cast<double>(n()));
         return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
     }
 
     void accept(double h, double err, double t_new) {
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < N; ++i) {  // dense-output coefficients (Hairer's rcont1..5)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {  // dense-output coefficients (Hairer's rcont1..5)
             const double dy = y1_[i] - y_[i], bspl = h * k1_[i] - dy;
             rc1_[i] = y_[i];
             rc2_[i] = dy;
@@ -283,13 +316,14 @@ private:
     // within one step has the same sign at both ends (a short reversal of v_r), and checking the ends alone
     // would miss that switch and leave the law on the wrong branch (cf. SciML's interp_points).
     StepResult locate_roots() {
-        if constexpr (G == 0) {
+        if constexpr (kNoGuards) {
             return {t_, false};
         } else {
-            std::array<double, G> g1{}, reference{}, g_lo{}, g_k{};
+            if (G() == 0) return {t_, false};
+            Guards &g1 = g1_, &reference = reference_, &g_lo = g_lo_, &g_k = g_k_;
             if constexpr (kStageGuards) g1 = end_g_;
             else guards(t_, y_, g1);
-            for (std::size_t i = 0; i < G; ++i) reference[i] = reference_value(i, g1[i]);
+            for (std::size_t i = 0; i < G(); ++i) reference[i] = reference_value(i, g1[i]);
             if constexpr (kStageGuards) {
                 if (!crossing_seen(reference, g1)) return no_root(g1);
             }
@@ -304,7 +338,7 @@ private:
                     interpolate(t_k, ytmp_.data());
                     guards(t_k, ytmp_, g_k);
                 }
-                for (std::size_t i = 0; i < G; ++i) {
+                for (std::size_t i = 0; i < G(); ++i) {
                     if (crossed(i, reference[i], g_k[i]) == 0) continue;
                     any = true;
                     t_root = std::min(t_root, bracket_root(i, reference[i], lo, t_k, g_lo[i], g_k[i]));
@@ -319,13 +353,13 @@ private:
                 guards(t_, y_, g1);
                 rhs(t_, y_, k1_);
             }
-            for (std::size_t i = 0; i < G; ++i) roots_[i] = crossed(i, reference[i], g1[i]);
+            for (std::size_t i = 0; i < G(); ++i) roots_[i] = crossed(i, reference[i], g1[i]);
             return {t_, true};
         }
     }
 
-    StepResult no_root(const std::array<double, G>& g1) {
-        for (std::size_t i = 0; i < G; ++i) {
+    StepResult no_root(const Guards& g1) {
+        for (std::size_t i = 0; i < G(); ++i) {
             if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
             g_[i] = g1[i];
         }
@@ -334,16 +368,16 @@ private:
 
     // Any guard crossed from its reference at the step's end, at a stage of the accepted step, or at the dense
     // output in the stages' widest gap? Only then is the full scan worth its guard evaluations.
-    bool crossing_seen(const std::array<double, G>& reference, const std::array<double, G>& g1) {
-        const auto any_crossed = [&](const std::array<double, G>& g) {
-            for (std::size_t i = 0; i < G; ++i)
+    bool crossing_seen(const Guards& reference, const Guards& g1) {
+        const auto any_crossed = [&](const Guards& g) {
+            for (std::size_t i = 0; i < G(); ++i)
                 if (crossed(i, reference[i], g[i]) != 0) return true;
             return false;
         };
         if (any_crossed(g1)) return true;
         for (const auto& g : stage_g_)
             if (any_crossed(g)) return true;
-        std::array<double, G> g_gap{};
+        Guards& g_gap = g_scratch_;
         const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
         interpolate(t_gap, ytmp_.data());
         guards(t_gap, ytmp_, g_gap);
@@ -377,7 +411,7 @@ private:
         const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
         const int dir = sys_.guard_direction(i, mode_);
         int side = 0;
-        std::array<double, G> g{};
+        Guards& g = g_scratch_;
         for (int iter = 0; iter < 200 && hi - lo > tol; ++iter) {
             double tm = hi - g_hi * (hi - lo) / (g_hi - g_lo);
             if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
@@ -400,18 +434,20 @@ private:
 
     const System& sys_;
     const SolverOptions& opt_;
-    int mode_ = 0;
+    std::size_t n_ = 0, g_count_ = 0;
+    Mode mode_{};
     double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0;
     double log_facold_ = kLogFacoldMin;  ///< log of the PI controller's previous error, at least log 1e-4
     double h_dense_accepted_ = 0.0;  ///< last accepted step, 0 before the first: the step after a restart
-    std::array<std::array<double, G>, 4> stage_g_{};  ///< guards at stages 2-5 (rhs_guards systems only)
-    std::array<double, G> end_g_{};                   ///< guards at (t + h, y1)
+    std::array<Guards, 4> stage_g_{};  ///< guards at stages 2-5 (rhs_guards systems only)
+    Guards end_g_{};                   ///< guards at (t + h, y1)
     bool last_rejected_ = false;
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
     State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
-    std::array<double, G> g_{};
-    std::array<bool, G> masked_{};
-    std::array<int, G> roots_{};
+    Guards g_{};
+    Guards g1_{}, reference_{}, g_lo_{}, g_k_{}, g_scratch_{};  ///< root location's work space (no heap per step)
+    GuardArray<System, bool> masked_{};
+    GuardArray<System, int> roots_{};
     SolverStats stats_;
 };
 
@@ -419,3 +455,4 @@ private:
 
 #undef FRICTIONSIM_DETAIL_UNROLL
 #undef FRICTIONSIM_DETAIL_NOINLINE
+#undef FRICTIONSIM_DETAIL_STATES

@@ -19,14 +19,15 @@
 #include "hybrid_system.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "system_size.hpp"
 
 namespace frictionsim {
 
 /// What integrate_hybrid hands back: the final state and mode, and the integrator's counters.
-template <std::size_t N>
+template <class System>
 struct HybridOutcome {
-    std::array<double, N> state{};
-    int mode = 0;
+    StateArray<System> state{};
+    system_mode_t<System> mode{};
     SolverStats stats;
 };
 
@@ -66,19 +67,19 @@ private:
 /// which way each one moves (explicit Euler over a tiny step) so that one leaving zero towards its triggering
 /// side fires at once rather than being masked (SciML OrdinaryDiffEq #3222). Returns true if any fires.
 template <class System>
-bool zero_guards_triggering(const System& sys, double t, const double* x, int mode,
-                            std::array<int, System::guard_count>& fired) {
-    constexpr std::size_t N = System::state_size, G = System::guard_count;
-    std::array<double, G> g{};
+bool zero_guards_triggering(const System& sys, double t, const double* x, const system_mode_t<System>& mode,
+                            GuardArray<System, int>& fired) {
+    const std::size_t N = state_size_of(sys), G = guard_count_of(sys);
+    GuardArray<System> g = make_guard_array(sys);
     sys.guards(t, x, mode, g.data());
     bool any_zero = false;
     for (double gi : g) any_zero = any_zero || gi == 0.0;
     if (!any_zero) return false;
     const double dt = 1e-9 * std::max(1.0, std::abs(t));
-    std::array<double, N> dxdt{}, probe{};
+    StateArray<System> dxdt = make_state_array(sys), probe = make_state_array(sys);
     sys.rhs(t, x, mode, dxdt.data());
     for (std::size_t k = 0; k < N; ++k) probe[k] = x[k] + dt * dxdt[k];
-    std::array<double, G> g_probe{};
+    GuardArray<System> g_probe = make_guard_array(sys);
     sys.guards(t + dt, probe.data(), mode, g_probe.data());
     bool any = false;
     for (std::size_t i = 0; i < G; ++i) {
@@ -170,34 +171,35 @@ inline void check_time_span(double t0, double t_end, const std::vector<double>& 
 /// Throws SimulationError (time reached) when the integrator fails and ChatteringError when the switching
 /// bound trips; everything observed before the throw stays with the observer.
 template <template <class> class Integrator, class System, class Observer = NullObserver>
-HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
-                                                        std::array<double, System::state_size> x, double t0,
-                                                        double t_end, const SolverOptions& options,
-                                                        Observer&& observer = {}) {
-    constexpr std::size_t G = System::guard_count;
-    options.validate(System::state_size);
+HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, double t0, double t_end,
+                                       const SolverOptions& options, Observer&& observer = {}) {
+    const std::size_t N = state_size_of(sys), G = guard_count_of(sys);
+    options.validate(N);
     detail::check_time_span(t0, t_end, options.output_times);
+    if (x.size() != N) detail::reject("simulate", "initial_state", "one value per state (size given)",
+                                      static_cast<double>(x.size()));
     for (double xi : x) detail::require_finite("simulate", "initial_state", xi);
 
     const std::vector<double>& outputs = options.output_times;
     std::size_t next_output = 0;
     Integrator<System> integrator(sys, options);
-    int mode = detail::reporting_time(t0, [&] { return sys.initial_mode(t0, x.data()); });
+    system_mode_t<System> mode = detail::reporting_time(t0, [&] { return sys.initial_mode(t0, x.data()); });
     detail::ChatteringGuard chattering(options);
     detail::RunWatch watch(options);
-    std::array<int, G> fired{};
-    std::array<double, System::state_size> buffer{};
+    GuardArray<System, int> fired = make_guard_array<System, int>(sys);
+    StateArray<System> buffer = make_state_array(sys);
 
     // Resolve a switch at t (state x, guards `fired`), log it, restart; repeat while guards that sit at zero
     // after the restart head straight into their triggering side (cascading or simultaneous switches).
     auto handle_switch = [&](double t) {
         do {
-            const int before = mode;
+            const system_mode_t<System> before = mode;
             mode = sys.switch_mode(t, x.data(), before, fired.data());
             for (std::size_t i = 0; i < G; ++i) {
                 if (fired[i] == 0) continue;
-                Event e{t, static_cast<int>(i), sys.guard_name(i, before), before, mode,
-                        sys.mode_name(before), sys.mode_name(mode)};
+                const int from = guard_mode(sys, i, before), to = guard_mode(sys, i, mode);
+                Event e{t, static_cast<int>(i), sys.guard_name(i, before), from, to, sys.mode_name(from),
+                        sys.mode_name(to)};
                 observer.event(e, t, x.data());
                 if (chattering.record(t)) {
                     std::ostringstream msg;
@@ -234,14 +236,16 @@ HybridOutcome<System::state_size> integrate_hybrid(const System& sys,
         });
         if (s.root) {
             const double* xs = integrator.state();
-            std::copy(xs, xs + System::state_size, x.begin());
-            std::copy(integrator.roots(), integrator.roots() + G, fired.begin());
+            std::copy(xs, xs + N, x.begin());
+            const int* roots = integrator.roots();
+            for (std::size_t i = 0; i < G; ++i) fired[i] = roots[i];  // (std::copy: GCC 12 warns on a 0-size array)
             detail::reporting_time(s.t, [&] { handle_switch(s.t); });
         }
         watch.after_step(s.t);  // after the step's outputs: a stop here keeps everything up to s.t
     }
-    HybridOutcome<System::state_size> out;
-    std::copy(integrator.state(), integrator.state() + System::state_size, out.state.begin());
+    HybridOutcome<System> out;
+    out.state = make_state_array(sys);
+    std::copy(integrator.state(), integrator.state() + N, out.state.begin());
     for (double xi : out.state)  // NaN is never success, recorded or not
         if (!std::isfinite(xi)) throw SimulationError("non-finite final state at t = " + std::to_string(t_end) + " s",
                                                       integrator.previous_time());

@@ -10,6 +10,7 @@
 
 #include "../detail/validate.hpp"
 #include "hybrid_system.hpp"
+#include "jacobian.hpp"
 
 namespace frictionsim {
 
@@ -31,6 +32,30 @@ inline const char* method_name(Method m) {
     return "unknown";
 }
 
+/// The linear solver inside CVODE's Newton iteration (BDF only).
+enum class LinearSolver {
+    automatic,  ///< band when the system declares jacobian_bandwidths(), else dense
+    dense,      ///< SUNDIALS dense LU: O(n^3) per factorisation, right for the lab rigs' 2-20 states
+    band,       ///< SUNDIALS band LU: O(n (lower + upper)^2), a string's nodes couple only their neighbours
+    sparse,     ///< KLU (SuiteSparse) on the system's jacobian_pattern(): needs jacobian_entries()
+};
+
+inline const char* linear_solver_name(LinearSolver s) {
+    switch (s) {
+        case LinearSolver::automatic: return "automatic";
+        case LinearSolver::dense: return "dense";
+        case LinearSolver::band: return "band";
+        case LinearSolver::sparse: return "sparse";
+    }
+    return "unknown";
+}
+
+template <class System>
+constexpr LinearSolver resolve_linear_solver(LinearSolver requested) {
+    if (requested != LinearSolver::automatic) return requested;
+    return declares_bandwidths_v<System> ? LinearSolver::band : LinearSolver::dense;
+}
+
 template <class System>
 constexpr Method resolve_method(Method requested) {
     if (requested != Method::automatic) return requested;
@@ -39,6 +64,7 @@ constexpr Method resolve_method(Method requested) {
 
 struct SolverOptions {
     Method method = Method::automatic;
+    LinearSolver linear_solver = LinearSolver::automatic;  ///< CVODE BDF's Newton solver
     double rtol = 1e-8;
     double atol = 1e-10;                 ///< scalar absolute tolerance, used when atol_per_state is empty
     std::vector<double> atol_per_state;  ///< one absolute tolerance per state, overrides atol

@@ -12,6 +12,7 @@
 #include "../error.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "system_size.hpp"
 
 namespace frictionsim {
 
@@ -20,26 +21,26 @@ class Recorder {
 public:
     explicit Recorder(const System& system, std::size_t expected_rows = 0,
                       std::size_t max_rows = SolverOptions{}.max_output_rows)
-        : sys_(system), max_rows_(max_rows), result_(std::make_shared<Result>()) {
-        for (const char* n : system.state_names()) result_->state_names.emplace_back(n);
+        : sys_(system), n_(state_size_of(system)), max_rows_(max_rows), result_(std::make_shared<Result>()) {
+        for (const auto& n : system.state_names()) result_->state_names.emplace_back(n);
         result_->t.reserve(expected_rows);
-        result_->states.reserve(expected_rows * System::state_size);
+        result_->states.reserve(expected_rows * n_);
         result_->friction_force.reserve(expected_rows);
         result_->mode.reserve(expected_rows);
     }
 
-    void output(double t, const double* x, int mode) {
+    void output(double t, const double* x, const system_mode_t<System>& mode) {
         if (result_->t.size() >= max_rows_) over_budget(t, "rows");
         const double force = sys_.friction_force(t, x, mode);
         bool finite = std::isfinite(force);
-        for (std::size_t i = 0; i < System::state_size; ++i) finite = finite && std::isfinite(x[i]);
+        for (std::size_t i = 0; i < n_; ++i) finite = finite && std::isfinite(x[i]);
         if (!finite) non_finite(t, x, force);
         result_->t.push_back(t);
-        result_->states.insert(result_->states.end(), x, x + System::state_size);
+        result_->states.insert(result_->states.end(), x, x + n_);
         result_->friction_force.push_back(force);
-        result_->mode.push_back(mode);
+        result_->mode.push_back(mode_code(sys_, mode));
     }
-    void step(double t, const double* x, int mode) { output(t, x, mode); }
+    void step(double t, const double* x, const system_mode_t<System>& mode) { output(t, x, mode); }
     void event(const Event& e, double t, const double*) {
         if (result_->events.size() >= max_rows_) over_budget(t, "events");
         result_->events.push_back(e);
@@ -56,13 +57,13 @@ public:
 
 private:
     /// Bytes one output row takes: time, states, friction force, mode.
-    static constexpr std::size_t kRowBytes = (System::state_size + 2) * sizeof(double) + sizeof(int);
+    std::size_t row_bytes() const { return (n_ + 2) * sizeof(double) + sizeof(int); }
 
     [[noreturn]] void over_budget(double t, const char* what) const {
         std::ostringstream msg;
         msg.precision(17);
         msg << "the result reached max_output_rows = " << max_rows_ << " " << what << " (about "
-            << static_cast<double>(max_rows_ * kRowBytes) / (1 << 20) << " MiB of rows) at t = " << t
+            << static_cast<double>(max_rows_ * row_bytes()) / (1 << 20) << " MiB of rows) at t = " << t
             << " s; record fewer rows (output_times instead of every step) or raise max_output_rows";
         throw BudgetExceeded(msg.str(), result_->t.empty() ? t : result_->t.back(), "max_output_rows");
     }
@@ -71,14 +72,14 @@ private:
         std::ostringstream msg;
         msg.precision(17);
         msg << "non-finite result at t = " << t << " s:";
-        const auto names = sys_.state_names();
-        for (std::size_t i = 0; i < System::state_size; ++i)
-            if (!std::isfinite(x[i])) msg << " " << names[i] << " = " << x[i];
+        for (std::size_t i = 0; i < n_; ++i)
+            if (!std::isfinite(x[i])) msg << " " << result_->state_names[i] << " = " << x[i];
         if (!std::isfinite(force)) msg << " friction_force = " << force;
         throw SimulationError(msg.str(), result_->t.empty() ? t : result_->t.back());
     }
 
     const System& sys_;
+    std::size_t n_;
     std::size_t max_rows_;
     std::shared_ptr<Result> result_;
 };

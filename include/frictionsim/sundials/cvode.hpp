@@ -1,14 +1,25 @@
-// SUNDIALS CVODE behind the Integrator concept of solve/hybrid_system.hpp: BDF + dense Newton for stiff contact
-// laws, Adams + fixed point for smooth rigs. This folder is the only place that includes SUNDIALS headers.
-// Builds against SUNDIALS 6.4 (Debian bookworm) and 7.x.
+// SUNDIALS CVODE behind the Integrator concept of solve/hybrid_system.hpp: BDF + Newton for stiff contact laws
+// (dense, band or KLU sparse linear solver: SolverOptions::linear_solver), Adams + fixed point for smooth rigs.
+// This folder is the only place that includes SUNDIALS headers. Builds against SUNDIALS 6.4 (Debian bookworm)
+// and 7.x. KLU needs SUNDIALS' sunlinsolklu library: the CMake target frictionsim::sundials links it and defines
+// FRICTIONSIM_SUNDIALS_KLU where SUNDIALS has it.
 #pragma once
 
 #include <sundials/sundials_config.h>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_band.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_band.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#if defined(FRICTIONSIM_SUNDIALS_KLU) && FRICTIONSIM_SUNDIALS_KLU
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#define FRICTIONSIM_DETAIL_KLU 1
+#else
+#define FRICTIONSIM_DETAIL_KLU 0
+#endif
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include <algorithm>
@@ -25,21 +36,19 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "../error.hpp"
 #include "../solve/hybrid_system.hpp"
+#include "../solve/jacobian.hpp"
 #include "../solve/options.hpp"
 #include "../solve/result.hpp"
 
 namespace frictionsim {
 namespace detail::cvode {
 
-/// Does S provide `void jacobian(double t, const double* x, int mode, double* J_column_major) const`?
-template <class S, class = void>
-struct has_jacobian : std::false_type {};
-template <class S>
-struct has_jacobian<S, std::void_t<decltype(std::declval<const S&>().jacobian(
-                           0.0, std::declval<const double*>(), 0, std::declval<double*>()))>> : std::true_type {};
+/// Is KLU (SUNDIALS' sparse direct solver) compiled in?
+constexpr bool klu_available = FRICTIONSIM_DETAIL_KLU != 0;
 
 // One deleter per SUNDIALS handle type, so that every handle is owned by a std::unique_ptr.
 struct FreeContext { void operator()(SUNContext c) const { SUNContext_Free(&c); } };
@@ -72,18 +81,25 @@ P made(P handle, const char* what) {
 /// `system` must outlive the integrator. Movable, not copyable.
 template <class System>
 class Cvode {
-    static constexpr std::size_t n = System::state_size;
-    static constexpr std::size_t m = System::guard_count;
-    static_assert(n > 0, "Cvode: a system needs at least one state");
+    using Mode = system_mode_t<System>;
 
 public:
     /// Throws InvalidParameter for invalid options or a method that is not a CVODE one.
-    Cvode(const System& system, const SolverOptions& options) : options_(options) {
+    Cvode(const System& system, const SolverOptions& options)
+        : options_(options), n(state_size_of(system)), m(guard_count_of(system)), x_previous_(n), roots_(m),
+          directions_(m) {
         namespace cv = detail::cvode;
         options_.validate(n);
+        if (n == 0) detail::reject("Cvode", "state_size", "at least one state", 0.0);
         if (options_.method != Method::cvode_bdf && options_.method != Method::cvode_adams)
             throw InvalidParameter("method", std::string("Cvode: method must be cvode_bdf or cvode_adams (got ") +
                                                  method_name(options_.method) + ")");
+        linear_solver_kind_ = resolve_linear_solver<System>(options_.linear_solver);
+        if (linear_solver_kind_ == LinearSolver::sparse && !detail::cvode::klu_available)
+            throw InvalidParameter("linear_solver",
+                                   "SolverOptions: linear_solver = sparse needs SUNDIALS' KLU, which this build does "
+                                   "not have (link SUNDIALS::sunlinsolklu and define FRICTIONSIM_SUNDIALS_KLU=1; the "
+                                   "CMake target frictionsim::sundials does so when SUNDIALS provides it)");
         SUNContext context = nullptr;
 #if SUNDIALS_VERSION_MAJOR >= 7
         if (SUNContext_Create(SUN_COMM_NULL, &context) != 0) throw SimulationError("CVODE: no SUNContext", 0.0);
@@ -93,6 +109,8 @@ public:
         context_.reset(context);
         shared_ = std::make_unique<Shared>();
         shared_->system = &system;
+        shared_->states = n;
+        shared_->guards = m;
 #if SUNDIALS_VERSION_MAJOR >= 7
         // Replace the default handler (which prints to stderr) so that the message ends up in our exception.
         SUNContext_ClearErrHandlers(context);
@@ -102,8 +120,7 @@ public:
         y_.reset(cv::made(N_VNew_Serial(size, context), "the state vector"));
         dky_.reset(cv::made(N_VNewEmpty_Serial(size, context), "the dense-output vector"));
         if (options_.method == Method::cvode_bdf) {
-            jacobian_.reset(cv::made(SUNDenseMatrix(size, size, context), "the dense matrix"));
-            linear_solver_.reset(cv::made(SUNLinSol_Dense(y_.get(), jacobian_.get(), context), "SUNLinSol_Dense"));
+            make_linear_solver(system, context);
         } else {
             nonlinear_solver_.reset(
                 cv::made(SUNNonlinSol_FixedPoint(y_.get(), 0, context), "SUNNonlinSol_FixedPoint"));
@@ -116,7 +133,7 @@ public:
     }
 
     /// Exact restart at (t, x) in `mode`: CVODE forgets its history (CVodeInit the first time, CVodeReInit after).
-    void restart(double t, const double* x, int mode) {
+    void restart(double t, const double* x, const Mode& mode) {
         std::copy(x, x + n, N_VGetArrayPointer(y_.get()));
         std::copy(x, x + n, x_previous_.begin());
         shared_->mode = mode;
@@ -127,11 +144,11 @@ public:
             check(CVodeReInit(memory_.get(), t, y_.get()), "CVodeReInit", t);
         }
         ++done_.restarts;
-        if constexpr (m > 0) {
+        if (m > 0) {
             for (std::size_t i = 0; i < m; ++i) directions_[i] = shared_->system->guard_direction(i, mode);
             check(CVodeSetRootDirection(memory_.get(), directions_.data()), "CVodeSetRootDirection", t);
         }
-        roots_.fill(0);
+        std::fill(roots_.begin(), roots_.end(), 0);
         t_ = t_previous_ = t;
         stepped_ = tiny_span_ = false;
     }
@@ -182,7 +199,7 @@ public:
             CVodeGetRootInfo(memory, roots_.data());
             return {t_, true};
         }
-        roots_.fill(0);
+        std::fill(roots_.begin(), roots_.end(), 0);
         return {t_, false};
     }
 
@@ -240,7 +257,10 @@ private:
     /// valid.
     struct Shared {
         const System* system = nullptr;
-        int mode = 0;
+        Mode mode{};
+        std::size_t states = 0, guards = 0;
+        LinearSolver linear_solver = LinearSolver::dense;
+        std::vector<sunindextype> column_starts, rows;  // the KLU pattern (CSC), rewritten into J at each call
         std::exception_ptr exception;   // thrown by the system inside a callback, rethrown as text in fail()
         const char* problem = nullptr;  // a non-finite value returned by the system
         double problem_time = 0.0;
@@ -271,7 +291,7 @@ private:
             shared.system->rhs(t, N_VGetArrayPointer(x), shared.mode, f);
             // NaN/Inf would poison the error test. Reporting it as recoverable makes CVODE retry with a smaller
             // step (stiff laws can overflow on an overshooting trial step) and give up after a bounded number.
-            for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t i = 0; i < shared.states; ++i) {
                 if (!std::isfinite(f[i])) {
                     shared.note("the right-hand side returned a non-finite value", t);
                     return 1;
@@ -290,7 +310,7 @@ private:
         try {
             shared.system->guards(t, N_VGetArrayPointer(x), shared.mode, g);
             // A NaN guard would silently never cross zero, i.e. miss a switch.
-            for (std::size_t i = 0; i < m; ++i) {
+            for (std::size_t i = 0; i < shared.guards; ++i) {
                 if (!std::isfinite(g[i])) {
                     shared.note("a guard returned a non-finite value", t);
                     return -1;
@@ -303,17 +323,108 @@ private:
         }
     }
 
-    // CVODE zeroes J before the call; the dense SUNMatrix stores its columns contiguously (column-major).
+    // CVODE zeroes J before the call. Dense: the SUNMatrix stores its columns contiguously (column-major), the
+    // form of a rig's jacobian(). Band: column j holds rows j - upper .. j + lower. Sparse (CSC): the pattern is
+    // written back first (SUNMatZero clears the structure of a sparse matrix too), then each entry is found by
+    // a binary search in its column.
     static int jacobian(sunrealtype t, N_Vector x, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector,
                         N_Vector) noexcept {
         auto& shared = *static_cast<Shared*>(data);
         if (shared.exception) return -1;
         try {
-            shared.system->jacobian(t, N_VGetArrayPointer(x), shared.mode, SUNDenseMatrix_Data(J));
+            const double* state = N_VGetArrayPointer(x);
+            switch (shared.linear_solver) {
+                case LinearSolver::dense:
+                    if constexpr (has_dense_jacobian_v<System>) {
+                        shared.system->jacobian(t, state, shared.mode, SUNDenseMatrix_Data(J));
+                    } else if constexpr (has_jacobian_entries_v<System>) {
+                        const sunindextype rows = SUNDenseMatrix_Rows(J);
+                        double* a = SUNDenseMatrix_Data(J);
+                        shared.system->jacobian_entries(t, state, shared.mode,
+                                                        [a, rows](std::size_t i, std::size_t j, double v) {
+                                                            a[static_cast<sunindextype>(j) * rows +
+                                                              static_cast<sunindextype>(i)] += v;
+                                                        });
+                    }
+                    break;
+                case LinearSolver::band:
+                    if constexpr (has_jacobian_entries_v<System>) {
+                        shared.system->jacobian_entries(t, state, shared.mode, [J](std::size_t i, std::size_t j, double v) {
+                            SUNBandMatrix_Column(J, static_cast<sunindextype>(j))[static_cast<sunindextype>(i) -
+                                                                                  static_cast<sunindextype>(j)] += v;
+                        });
+                    }
+                    break;
+                case LinearSolver::sparse:
+#if FRICTIONSIM_DETAIL_KLU
+                    if constexpr (has_jacobian_entries_v<System>) {
+                        sunindextype* starts = SUNSparseMatrix_IndexPointers(J);
+                        sunindextype* rows = SUNSparseMatrix_IndexValues(J);
+                        double* values = SUNSparseMatrix_Data(J);
+                        std::copy(shared.column_starts.begin(), shared.column_starts.end(), starts);
+                        std::copy(shared.rows.begin(), shared.rows.end(), rows);
+                        std::fill(values, values + shared.rows.size(), 0.0);
+                        shared.system->jacobian_entries(t, state, shared.mode, [&](std::size_t i, std::size_t j, double v) {
+                            const sunindextype* first = rows + starts[j];
+                            const sunindextype* last = rows + starts[j + 1];
+                            const sunindextype* at = std::lower_bound(first, last, static_cast<sunindextype>(i));
+                            if (at == last || *at != static_cast<sunindextype>(i))
+                                throw std::logic_error("jacobian_entries wrote (" + std::to_string(i) + ", " +
+                                                       std::to_string(j) + "), outside jacobian_pattern()");
+                            values[at - rows] += v;
+                        });
+                    }
+#endif
+                    break;
+                default: break;
+            }
             return 0;
         } catch (...) {
             shared.exception = std::current_exception();
             return -1;
+        }
+    }
+
+    /// The BDF linear solver: the matrix and solver of the chosen kind, and the pattern KLU needs.
+    void make_linear_solver(const System& system, SUNContext context) {
+        namespace cv = detail::cvode;
+        const auto size = static_cast<sunindextype>(n);
+        shared_->linear_solver = linear_solver_kind_;
+        switch (linear_solver_kind_) {
+            case LinearSolver::band: {
+                const Bandwidths b = bandwidths_of(system);
+                jacobian_.reset(cv::made(SUNBandMatrix(size, static_cast<sunindextype>(b.upper),
+                                                       static_cast<sunindextype>(b.lower), context),
+                                         "the band matrix"));
+                linear_solver_.reset(cv::made(SUNLinSol_Band(y_.get(), jacobian_.get(), context), "SUNLinSol_Band"));
+                break;
+            }
+            case LinearSolver::sparse: {
+#if FRICTIONSIM_DETAIL_KLU
+                auto pattern = jacobian_pattern_of(system);
+                std::sort(pattern.begin(), pattern.end(), [](const auto& a, const auto& b) {
+                    return a.second != b.second ? a.second < b.second : a.first < b.first;
+                });
+                pattern.erase(std::unique(pattern.begin(), pattern.end()), pattern.end());
+                shared_->column_starts.assign(n + 1, 0);
+                shared_->rows.clear();
+                for (const auto& [row, col] : pattern) {
+                    if (row >= n || col >= n)
+                        detail::reject("jacobian_pattern", "entry", "inside the n x n Jacobian",
+                                       static_cast<double>(std::max(row, col)));
+                    shared_->rows.push_back(static_cast<sunindextype>(row));
+                    ++shared_->column_starts[col + 1];
+                }
+                for (std::size_t j = 0; j < n; ++j) shared_->column_starts[j + 1] += shared_->column_starts[j];
+                const auto nonzeros = static_cast<sunindextype>(std::max<std::size_t>(shared_->rows.size(), 1));
+                jacobian_.reset(cv::made(SUNSparseMatrix(size, size, nonzeros, CSC_MAT, context), "the sparse matrix"));
+                linear_solver_.reset(cv::made(SUNLinSol_KLU(y_.get(), jacobian_.get(), context), "SUNLinSol_KLU"));
+#endif
+                break;
+            }
+            default:
+                jacobian_.reset(cv::made(SUNDenseMatrix(size, size, context), "the dense matrix"));
+                linear_solver_.reset(cv::made(SUNLinSol_Dense(y_.get(), jacobian_.get(), context), "SUNLinSol_Dense"));
         }
     }
 
@@ -357,12 +468,16 @@ private:
         if (o.initial_step > 0.0) check(CVodeSetInitStep(memory, o.initial_step), "CVodeSetInitStep", t);
         if (options_.method == Method::cvode_bdf) {
             check(CVodeSetLinearSolver(memory, linear_solver_.get(), jacobian_.get()), "CVodeSetLinearSolver", t);
-            if constexpr (detail::cvode::has_jacobian<System>::value)
-                check(CVodeSetJacFn(memory, &Cvode::jacobian), "CVodeSetJacFn", t);
+            // Without an analytic Jacobian CVODE differences the right-hand side (within the band for a band
+            // matrix: upper + lower + 1 evaluations); KLU needs the entries.
+            const bool analytic = linear_solver_kind_ == LinearSolver::dense
+                                      ? has_dense_jacobian_v<System> || has_jacobian_entries_v<System>
+                                      : has_jacobian_entries_v<System>;
+            if (analytic) check(CVodeSetJacFn(memory, &Cvode::jacobian), "CVodeSetJacFn", t);
         } else {
             check(CVodeSetNonlinearSolver(memory, nonlinear_solver_.get()), "CVodeSetNonlinearSolver", t);
         }
-        if constexpr (m > 0) {
+        if (m > 0) {
             check(CVodeRootInit(memory, static_cast<int>(m), &Cvode::guards), "CVodeRootInit", t);
             // A guard exactly zero at a restart is normal here (we restart on the switching surface).
             check(CVodeSetNoInactiveRootWarn(memory), "CVodeSetNoInactiveRootWarn", t);
@@ -377,7 +492,7 @@ private:
         namespace cv = detail::cvode;
         t_previous_ = t_;
         std::copy(state(), state() + n, x_previous_.begin());
-        roots_.fill(0);
+        std::fill(roots_.begin(), roots_.end(), 0);
 
         std::string what =
             std::string("CVODE (") + method_name(options_.method) + ") failed at t = " + cv::number(t_);
@@ -419,13 +534,13 @@ private:
     /// only asks this of the run's last step (t_stop is t_end).
     StepResult cross_tiny_span(double t_stop) {
         double* y = N_VGetArrayPointer(y_.get());
-        std::array<double, n> dxdt{};
+        std::vector<double> dxdt(n);
         shared_->system->rhs(t_, y, shared_->mode, dxdt.data());
         for (std::size_t i = 0; i < n; ++i) y[i] += (t_stop - t_) * dxdt[i];
         t_previous_ = t_;
         t_ = t_stop;
         tiny_span_ = true;
-        roots_.fill(0);
+        std::fill(roots_.begin(), roots_.end(), 0);
         return {t_, false};
     }
 
@@ -447,9 +562,11 @@ private:
     std::unique_ptr<void, detail::cvode::FreeMemory> memory_;
 
     SolverOptions options_;
-    std::array<double, n> x_previous_{};  // state at previous_time(), for an exact left end of dense output
-    std::array<int, m> roots_{};
-    std::array<int, m> directions_{};  // CVodeSetRootDirection wants a mutable array
+    std::size_t n, m;                  // states, guards
+    LinearSolver linear_solver_kind_ = LinearSolver::dense;
+    std::vector<double> x_previous_;   // state at previous_time(), for an exact left end of dense output
+    std::vector<int> roots_;
+    std::vector<int> directions_;      // CVodeSetRootDirection wants a mutable array
     SolverStats done_{};               // counters banked before each CVodeReInit
     double t_ = 0.0;
     double t_previous_ = 0.0;
@@ -459,3 +576,5 @@ private:
 };
 
 }  // namespace frictionsim
+
+#undef FRICTIONSIM_DETAIL_KLU
