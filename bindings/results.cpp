@@ -76,9 +76,16 @@ void register_results(py::module_& m) {
         .value("cvode_bdf", Method::cvode_bdf, "SUNDIALS CVODE BDF + Newton, dense linear solver")
         .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point");
 
+    py::enum_<LinearSolver>(m, "LinearSolver", "Linear solver of CVODE BDF's Newton iteration.")
+        .value("automatic", LinearSolver::automatic, "band when the system declares a banded Jacobian, else dense")
+        .value("dense", LinearSolver::dense, "dense LU: the lab rigs' few states")
+        .value("band", LinearSolver::band, "band LU: a drill string's nodes couple only their neighbours")
+        .value("sparse", LinearSolver::sparse, "KLU (SuiteSparse) on the system's sparsity pattern");
+
     py::class_<SolverOptions>(m, "SolverOptions", "Options of simulate(); validated when the run starts.")
         .def(py::init<>())
         .def_readwrite("method", &SolverOptions::method)
+        .def_readwrite("linear_solver", &SolverOptions::linear_solver)
         .def_readwrite("rtol", &SolverOptions::rtol)
         .def_readwrite("atol", &SolverOptions::atol)
         .def_readwrite("atol_per_state", &SolverOptions::atol_per_state)

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LuGre', 'Method', 'Parameter', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'Parameter', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -701,6 +701,59 @@ class Method:
     @property
     def value(self) -> int:
         ...
+class LinearSolver:
+    """
+    Linear solver of CVODE BDF's Newton iteration.
+    
+    Members:
+    
+      automatic : band when the system declares a banded Jacobian, else dense
+    
+      dense : dense LU: the lab rigs' few states
+    
+      band : band LU: a drill string's nodes couple only their neighbours
+    
+      sparse : KLU (SuiteSparse) on the system's sparsity pattern
+    """
+    __members__: typing.ClassVar[dict[str, LinearSolver]]
+    automatic: typing.ClassVar[LinearSolver]
+    band: typing.ClassVar[LinearSolver]
+    dense: typing.ClassVar[LinearSolver]
+    sparse: typing.ClassVar[LinearSolver]
+    @typing.overload
+    def __eq__(self, other: LinearSolver) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: LinearSolver) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class SolverOptions:
     """
     Options of simulate(); validated when the run starts.
@@ -709,6 +762,7 @@ class SolverOptions:
     min_atol: typing.ClassVar[float] = 1e-20
     min_rtol: typing.ClassVar[float] = 1e-14
     reliable_rtol: typing.ClassVar[float] = 0.001
+    linear_solver: LinearSolver
     method: Method
     record_steps: bool
     def __init__(self) -> None:
