@@ -1,9 +1,11 @@
 // Hybrid systems sized at run time (issue 13, item 1): the event loop, Dormand-Prince and CVODE (dense, band and
 // KLU sparse Newton solvers) on systems whose state and guard counts are known only at run time, and per-contact
 // modes (ContactModes) with one event per contact that switches.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "catch.hpp"
@@ -280,6 +282,55 @@ TEST_CASE("run-time size: blocks on a belt stick and slip each on its own, at th
                 CHECK(mine[k]->mode_after_name == std::string(break_away ? "slip" : "stick"));
                 CHECK(mine[k]->name == std::string(break_away ? "friction_reserve" : "relative_velocity"));
             }
+        }
+    }
+}
+
+TEST_CASE("run-time size: the chattering bound and partial results work with per-contact modes",
+          "[run_time_size]") {
+    BeltBlocks belt;
+    belt.stiffness = {4.0, 9.0, 25.0};
+    // every block's switches from the closed form, in time order: (time, block)
+    std::vector<std::pair<double, int>> switches;
+    for (std::size_t i = 0; i < belt.blocks(); ++i) {
+        double t = belt.first_break_away(i);
+        for (int k = 0; t < 10.0; ++k) {
+            switches.emplace_back(t, static_cast<int>(i));
+            t += k % 2 == 0 ? belt.slip_duration(i) : belt.stick_duration(i);
+        }
+    }
+    std::sort(switches.begin(), switches.end());
+    // the bound: more than 2 switches within 0.3 s stops the run at the first switch that makes it 3
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-13;
+    o.max_events_in_window = 2;
+    o.event_window = 0.3;
+    std::size_t stop = 2;
+    while (stop < switches.size() && switches[stop].first - switches[stop - 2].first > o.event_window) ++stop;
+    REQUIRE(stop < switches.size());
+    const double t_stop = switches[stop].first;
+    for (double t = 0.0; t < 10.0; t += 0.25) o.output_times.push_back(t);
+    const auto rows_before = static_cast<std::size_t>(std::count_if(
+        o.output_times.begin(), o.output_times.end(), [&](double t) { return t <= t_stop; }));
+    for (Method method : {Method::dormand_prince, Method::cvode_bdf}) {
+        o.method = method;
+        try {
+            (void)simulate(belt, 10.0, o);
+            FAIL("no ChatteringError");
+        } catch (const ChatteringError& e) {
+            REQUIRE(e.partial());
+            const Result& partial = *e.partial();
+            CHECK_FALSE(partial.completed);
+            CHECK(partial.state_count() == belt.state_size());
+            CHECK(partial.rows() == rows_before);  // the output rows up to the stop, none after
+            REQUIRE(partial.events.size() == stop + 1);
+            for (std::size_t k = 0; k <= stop; ++k) {
+                CHECK(partial.events[k].time == Approx(switches[k].first).margin(1e-7));
+                CHECK(partial.events[k].switching_function == switches[k].second);
+            }
+            CHECK(e.time_reached() == Approx(t_stop).margin(1e-7));
+            CHECK(std::string(e.what()).find(partial.events.back().name) != std::string::npos);
         }
     }
 }
