@@ -1,0 +1,705 @@
+// A drill string on the event-driven engine (issue 13, item 3): the lumped string of sections.hpp (N elements,
+// node 0 at the top, node N at the bit), in torsion and optionally axially, sized at run time.
+//   J_i dw_i/dt = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
+//   m_i dv_i/dt = F_i - F_{i-1} + w_b,i cos I [- H at node 0] [+ F_x sin(2 pi f_x t) at node k] - F_wall,i [- W]
+//   tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e), and the same for the axial force F_e with E A / dx
+// (structural damping proportional to stiffness: modal damping ratio beta w / 2 at frequency w; positions and
+// axial speeds positive down the hole).
+//  * top drive (TopDrive): PI speed control of a motor whose inertia J_td adds to node 0,
+//      T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt, -T_max, T_max),
+//    with the integral frozen while the torque is limited (anti-windup), the limit located as events; or a
+//    prescribed surface speed (w_0 = w_set held, the torque it takes recorded as work).
+//  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
+//  * wall contacts at chosen nodes with a normal force each (given, or the straight inclined hole's buoyed weight
+//    w_b sin I per node; w_b from the string's density minus the mud's). Torsion-only runs: any law of the
+//    library at the pipe's outer radius through DiscContact (contact/disc_contact.hpp: exact per-contact stick
+//    and slip, state laws' kinks); with axial motion the friction acts against the resultant sliding velocity
+//    (wall_contact.hpp, paper 000's friction vector). The string's contacts couple only through its springs and
+//    dampers, never rigidly, so the force that holds a stuck node is known from the state and each contact's
+//    stick condition is its own (no joint complementarity problem is needed at a switch).
+//  * the bit (bit.hpp) at node N, any bit law in (bit speed, weight on bit) -> torque, through DiscContact.
+// States, node by node so that the Jacobian is banded: speed_error_integral, then per node theta_i, omega_i,
+// [u_i, v_i], [the wall law's states], then the bit law's states and six work integrals that close the balance
+//   drive_work + hoist_work + excitation_work = change of (kinetic + elastic + gravity potential energy)
+//                                               + wall_friction_work + damping_work + bit_work.
+// The work integrals do not feed back, and their rows (which read every node) are left out of the analytic
+// Jacobian: they enter the Newton iteration linearly and converge with the other states.
+// Modes (ContactModes): one per wall contact, then the bit's, then the top drive's (-1, 0, +1: at -T_max,
+// linear, at +T_max). The Result's mode column counts the stuck wall contacts; events name the node.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "../contact/disc_contact.hpp"
+#include "../detail/validate.hpp"
+#include "../parameters.hpp"
+#include "../solve/jacobian.hpp"
+#include "../solve/system_size.hpp"
+#include "bit.hpp"
+#include "sections.hpp"
+#include "string_rig_params.hpp"
+#include "wall_contact.hpp"
+
+namespace frictionsim {
+
+template <class WallLaw, class Bit = OffBottom>
+class StringRig {
+    static_assert(check_friction_law<WallLaw>(), "StringRig<WallLaw, Bit>: WallLaw must meet the FrictionLaw concept");
+    static_assert(check_bit<Bit>(), "StringRig<WallLaw, Bit>: Bit must meet the bit interface (drillstring/bit.hpp)");
+    using Wall1 = DiscContact<WallLaw>;
+    using Wall2 = PlanarWallContact<WallLaw>;
+    using BitContact = DiscContact<Bit>;
+    static constexpr std::size_t Z = WallLaw::state_count, ZB = Bit::state_count;
+    static constexpr std::size_t npos = std::numeric_limits<std::size_t>::max();
+    static constexpr double gravity = 9.80665;
+
+public:
+    using mode_type = ContactModes;
+    using Params = StringRigParams;
+    static constexpr bool on_bottom = bit_touches_rock<Bit>();
+    static constexpr bool stiff = declares_stiff<WallLaw>::value;
+    /// Offsets of the work integrals after work_offset().
+    enum Work : std::size_t { drive_work, hoist_work, excitation_work, wall_friction_work, damping_work, bit_work };
+    static constexpr std::size_t work_count = 6;
+
+    StringRig(const DrillString& string, const StringRigParams& p, StringRigSetup setup, WallLaw law, Bit bit = Bit{})
+        : p_(p), setup_(std::move(setup)), law_(std::move(law)), bit_(std::move(bit)) {
+        constexpr const char* who = "StringRig";
+        validate_fields(who, p_, StringRigParams::fields());
+        if (setup_.elements == 0) detail::reject(who, "elements", "at least 1", 0.0);
+        const std::size_t n = setup_.elements;
+        lumped_ = string.lump(n);
+        for (const PipeSection& s : string.sections())
+            if (!(p_.mud_density < s.density))
+                detail::reject(who, "mud_density", "below every section's steel density (buoyed weight > 0)",
+                               p_.mud_density);
+        axial_ = setup_.axial;
+        block_ = 2 + (axial_ ? 2 : 0) + Z;
+        // contact nodes
+        std::vector<std::size_t>& nodes = setup_.contact_nodes;
+        if (!setup_.wall_contacts) nodes.clear();
+        else if (nodes.empty())
+            for (std::size_t i = 1; i <= n; ++i)
+                if (i < n || !on_bottom) nodes.push_back(i);
+        for (std::size_t c = 0; c < nodes.size(); ++c) {
+            const double v = static_cast<double>(nodes[c]);
+            if (nodes[c] == 0 || nodes[c] > n)
+                detail::reject(who, "contact_nodes", "in 1..N (node 0 is the top drive's)", v);
+            if (on_bottom && nodes[c] == n)
+                detail::reject(who, "contact_nodes", "below N with the bit on bottom (node N carries the bit)", v);
+            if (c > 0 && !(nodes[c] > nodes[c - 1])) detail::reject(who, "contact_nodes", "increasing", v);
+        }
+        if (setup_.excitation_node > n)
+            detail::reject(who, "excitation_node", "in 0..N", static_cast<double>(setup_.excitation_node));
+        // node data
+        const double dx = lumped_.element_length;
+        inertia_ = lumped_.node_inertia;
+        mass_ = lumped_.node_mass;
+        if (setup_.top_drive == TopDrive::pi_motor) inertia_[0] += p_.top_drive_inertia;
+        inertia_[n] += p_.end_inertia;
+        mass_[n] += p_.end_mass;
+        std::vector<PipeSection> buoyed = string.sections();
+        for (PipeSection& s : buoyed) s.density -= p_.mud_density;
+        std::vector<double> buoyed_mass = DrillString(buoyed).lump(n).node_mass;
+        buoyed_mass[n] += p_.end_mass * (1.0 - p_.mud_density / string.sections().back().density);
+        weight_.resize(n + 1);
+        radius_.assign(n + 1, 0.0);
+        for (std::size_t i = 0; i <= n; ++i) {
+            weight_[i] = buoyed_mass[i] * gravity * std::cos(p_.inclination);
+            double top = 0.0;
+            const double at = dx * static_cast<double>(i);
+            for (const PipeSection& s : string.sections()) {  // a node on a boundary touches with the larger OD
+                if (at >= top - 1e-9 * dx && at <= top + s.length + 1e-9 * dx)
+                    radius_[i] = std::max(radius_[i], 0.5 * s.outer_diameter);
+                top += s.length;
+            }
+        }
+        std::vector<double>& normal = setup_.normal_forces;
+        if (normal.empty()) {
+            for (std::size_t i : nodes) normal.push_back(buoyed_mass[i] * gravity * std::sin(p_.inclination));
+        } else if (normal.size() != nodes.size()) {
+            detail::reject(who, "normal_forces", "one per contact node", static_cast<double>(normal.size()));
+        }
+        for (double f : normal)
+            if (!(std::isfinite(f) && f >= 0.0)) detail::reject(who, "normal_forces", "non-negative and finite", f);
+        contact_of_.assign(n + 1, npos);
+        for (std::size_t c = 0; c < nodes.size(); ++c) {
+            contact_of_[nodes[c]] = c;
+            if (axial_) walls2_.emplace_back(law_, radius_[nodes[c]], normal[c], p_.stick_speed);
+            else walls1_.emplace_back(law_, radius_[nodes[c]], normal[c]);
+        }
+        if constexpr (on_bottom) bit_contact_.emplace_back(bit_, 1.0, bit_.weight_on_bit());
+        // mode slots and guards
+        contacts_ = nodes.size();
+        bit_slot_ = contacts_;
+        drive_slot_ = bit_slot_ + (on_bottom ? 1 : 0);
+        slots_ = drive_slot_ + (pi_drive() ? 1 : 0);
+        wall_guards_ = axial_ ? Wall2::guard_count : Wall1::guard_count;
+        for (std::size_t c = 0; c < contacts_; ++c)
+            for (std::size_t k = 0; k < wall_guards_; ++k) add_guard(c, k);
+        if constexpr (on_bottom)
+            for (std::size_t k = 0; k < BitContact::guard_count; ++k) add_guard(bit_slot_, k);
+        if (pi_drive())
+            for (std::size_t k = 0; k < 2; ++k) add_guard(drive_slot_, k);
+        start_ = std::vector<double>(state_size(), 0.0);
+        for (std::size_t i = 0; i <= n; ++i) {
+            start_[omega(i)] = i == 0 && !pi_drive() ? p_.surface_speed : p_.initial_speed;
+            if (axial_)
+                start_[speed(i)] = i == 0 && setup_.hoisting == Hoisting::hook_speed ? p_.hook_speed
+                                                                                     : p_.initial_axial_speed;
+        }
+    }
+
+    // ---- layout -------------------------------------------------------------------------------------------
+    std::size_t elements() const { return setup_.elements; }
+    std::size_t state_size() const { return work_offset() + work_count; }
+    std::size_t guard_count() const { return guard_slot_.size(); }
+    std::size_t theta(std::size_t node) const { return 1 + node * block_; }
+    std::size_t omega(std::size_t node) const { return 2 + node * block_; }
+    std::size_t position(std::size_t node) const { return 3 + node * block_; }  ///< u_i (axial runs)
+    std::size_t speed(std::size_t node) const { return 4 + node * block_; }     ///< v_i (axial runs)
+    std::size_t law_state(std::size_t node) const { return 1 + node * block_ + (axial_ ? 4 : 2); }
+    std::size_t bit_state() const { return 1 + (setup_.elements + 1) * block_; }
+    std::size_t work_offset() const { return bit_state() + ZB; }
+    static constexpr std::size_t speed_error_integral = 0;
+
+    const StringRigParams& params() const { return p_; }
+    const StringRigSetup& setup() const { return setup_; }
+    const LumpedString& lumped() const { return lumped_; }
+    const std::vector<double>& node_inertia() const { return inertia_; }  ///< with J_td at node 0 (PI drive)
+    const std::vector<double>& node_mass() const { return mass_; }
+    const std::vector<double>& node_radius() const { return radius_; }
+    /// Normal force of each contact, in contact_nodes order.
+    const std::vector<double>& normal_forces() const { return setup_.normal_forces; }
+    const std::vector<std::size_t>& contact_nodes() const { return setup_.contact_nodes; }
+    const Bit& bit() const { return bit_; }
+    bool pi_drive() const { return setup_.top_drive == TopDrive::pi_motor; }
+
+    /// Replaces the state at t = 0 (size state_size()).
+    void set_initial_state(std::vector<double> x) {
+        if (x.size() != state_size())
+            detail::reject("StringRig", "initial_state", "of size state_size()", static_cast<double>(x.size()));
+        for (double v : x)
+            if (!std::isfinite(v)) detail::reject("StringRig", "initial_state", "finite", v);
+        start_ = std::move(x);
+    }
+    std::vector<double> initial_state() const { return start_; }
+
+    // ---- loads and energies ---------------------------------------------------------------------------------
+    /// Element e's torque tau_e (spring + damper), N m: what the string below pulls node e forward with.
+    double element_torque(const double* x, std::size_t e) const {
+        const double k = lumped_.torsional_stiffness[e];
+        return k * (x[theta(e + 1)] - x[theta(e)]) + p_.damping_time * k * (x[omega(e + 1)] - x[omega(e)]);
+    }
+    /// Element e's axial force (tension positive), N.
+    double element_tension(const double* x, std::size_t e) const {
+        if (!axial_) return 0.0;
+        const double k = lumped_.axial_stiffness[e];
+        return k * (x[position(e + 1)] - x[position(e)]) + p_.damping_time * k * (x[speed(e + 1)] - x[speed(e)]);
+    }
+    /// k_p (w_set - w_0) + k_i int (w_set - w_0) dt, N m: the PI law before the limit.
+    double controller_torque(const double* x) const {
+        return p_.proportional_gain * (p_.surface_speed - x[omega(0)]) + p_.integral_gain * x[speed_error_integral];
+    }
+    double motor_torque(const double* x, const ContactModes& mode) const {
+        const int m = mode[drive_slot_];
+        return m == 0 ? controller_torque(x) : m * p_.torque_limit;
+    }
+    double excitation_force(double t) const {
+        return p_.excitation_amplitude * std::sin(2.0 * pi * p_.excitation_frequency * t);
+    }
+    /// The torque S and axial force P on node i from everything but its own wall contact and the bit's torque.
+    void loads(double t, const double* x, const ContactModes& mode, std::size_t i, double& torque, double& axial) const {
+        const std::size_t n = setup_.elements;
+        torque = (i < n ? element_torque(x, i) : 0.0) - (i > 0 ? element_torque(x, i - 1) : 0.0);
+        axial = 0.0;
+        if (i == 0 && pi_drive()) torque += motor_torque(x, mode);
+        if (!axial_) return;
+        axial = (i < n ? element_tension(x, i) : 0.0) - (i > 0 ? element_tension(x, i - 1) : 0.0) + weight_[i];
+        if (i == 0 && setup_.hoisting == Hoisting::hook_load) axial -= p_.hook_load;
+        if (i == setup_.excitation_node) axial += excitation_force(t);
+        if (on_bottom && i == n) axial -= bit_.weight_on_bit();
+    }
+    /// The torque the surface applies, N m: the motor's, or what holds the prescribed speed.
+    double surface_torque(double t, const double* x, const ContactModes& mode) const {
+        if (pi_drive()) return motor_torque(x, mode);
+        double s = 0.0, a = 0.0;
+        loads(t, x, mode, 0, s, a);
+        return -s;
+    }
+    /// The hook's force on the string, N, positive up: H, or what holds the prescribed hook speed.
+    double hook_force(double t, const double* x, const ContactModes& mode) const {
+        if (setup_.hoisting == Hoisting::hook_load) return p_.hook_load;
+        double s = 0.0, a = 0.0;
+        loads(t, x, mode, 0, s, a);
+        return a;
+    }
+    double kinetic_energy(const double* x) const {
+        double e = 0.0;
+        for (std::size_t i = 0; i <= setup_.elements; ++i) {
+            e += 0.5 * inertia_[i] * x[omega(i)] * x[omega(i)];
+            if (axial_) e += 0.5 * mass_[i] * x[speed(i)] * x[speed(i)];
+        }
+        return e;
+    }
+    double elastic_energy(const double* x) const {
+        double e = 0.0;
+        for (std::size_t k = 0; k < setup_.elements; ++k) {
+            const double twist = x[theta(k + 1)] - x[theta(k)];
+            e += 0.5 * lumped_.torsional_stiffness[k] * twist * twist;
+            if (axial_) {
+                const double stretch = x[position(k + 1)] - x[position(k)];
+                e += 0.5 * lumped_.axial_stiffness[k] * stretch * stretch;
+            }
+        }
+        return e;
+    }
+    /// - sum w_b,i cos I u_i, J: the buoyed weight's potential energy (0 in torsion-only runs).
+    double gravity_potential(const double* x) const {
+        double e = 0.0;
+        if (axial_)
+            for (std::size_t i = 0; i <= setup_.elements; ++i) e -= weight_[i] * x[position(i)];
+        return e;
+    }
+
+    // ---- the HybridSystem -----------------------------------------------------------------------------------
+    void rhs(double t, const double* x, const ContactModes& mode, double* dxdt) const {
+        rhs_guards(t, x, mode, dxdt, nullptr);
+    }
+    void guards(double t, const double* x, const ContactModes& mode, double* g) const {
+        const std::size_t n = setup_.elements;
+        std::size_t k = 0;
+        for (std::size_t i = 0; i <= n; ++i) {
+            const std::size_t c = contact_of_[i];
+            const bool has_bit = on_bottom && i == n;
+            if (c == npos && !has_bit) continue;
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, i, s, a);
+            if (c != npos) {
+                if (axial_) walls2_[c].guards(x[omega(i)], x[speed(i)], s, a, mode[c], g + k);
+                else walls1_[c].guards(x[omega(i)], s, x + law_state(i), mode[c], inertia_[i], g + k);
+                k += wall_guards_;
+            }
+            if constexpr (on_bottom)
+                if (has_bit) {
+                    bit_contact_[0].guards(x[omega(i)], s, x + bit_state(), mode[bit_slot_], inertia_[i], g + k);
+                    k += BitContact::guard_count;
+                }
+        }
+        if (pi_drive()) drive_guards(x, mode, g + k);
+    }
+
+    void rhs_guards(double t, const double* x, const ContactModes& mode, double* dx, double* g) const {
+        const std::size_t n = setup_.elements;
+        double power[work_count] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        std::size_t k = 0;
+        dx[speed_error_integral] = pi_drive() && mode[drive_slot_] == 0 ? p_.surface_speed - x[omega(0)] : 0.0;
+        for (std::size_t i = 0; i <= n; ++i) {
+            const double w = x[omega(i)], v = axial_ ? x[speed(i)] : 0.0;
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, i, s, a);
+            dx[theta(i)] = w;
+            double dw = s / inertia_[i], dv = a / mass_[i];
+            for (std::size_t j = 0; j < Z; ++j) dx[law_state(i) + j] = 0.0;
+            const std::size_t c = contact_of_[i];
+            if (c != npos) {
+                if (axial_) {
+                    const PlanarResponse r =
+                        walls2_[c].respond(w, v, s, a, x + law_state(i), mode[c], inertia_[i], mass_[i]);
+                    dw = r.angular_acceleration;
+                    dv = r.axial_acceleration;
+                    power[wall_friction_work] += r.torque * w + r.axial_force * v;
+                    walls2_[c].state_derivative(w, v, x + law_state(i), mode[c], dx + law_state(i));
+                    if (g != nullptr) walls2_[c].guards(w, v, s, a, mode[c], g + k);
+                } else {
+                    const DiscResponse r = walls1_[c].respond(w, s, x + law_state(i), mode[c], inertia_[i]);
+                    dw = r.acceleration;
+                    power[wall_friction_work] += r.torque * w;
+                    walls1_[c].state_derivative(w, x + law_state(i), mode[c], dx + law_state(i));
+                    if (g != nullptr) walls1_[c].guards(w, s, x + law_state(i), mode[c], inertia_[i], g + k);
+                }
+                k += wall_guards_;
+            }
+            if constexpr (on_bottom) {
+                if (i == n) {
+                    const DiscResponse r = bit_contact_[0].respond(w, s, x + bit_state(), mode[bit_slot_], inertia_[i]);
+                    dw = r.acceleration;
+                    power[bit_work] += r.torque * w + (axial_ ? bit_.weight_on_bit() * v : 0.0);
+                    if constexpr (ZB > 0) bit_contact_[0].state_derivative(w, x + bit_state(), mode[bit_slot_],
+                                                                           dx + bit_state());
+                    if (g != nullptr) bit_contact_[0].guards(w, s, x + bit_state(), mode[bit_slot_], inertia_[i], g + k);
+                    k += BitContact::guard_count;
+                }
+            }
+            if (i == 0) {
+                if (pi_drive()) {
+                    power[drive_work] = motor_torque(x, mode) * w;
+                } else {
+                    power[drive_work] = -s * w;  // the torque that holds w_0 at w_set
+                    dw = 0.0;
+                }
+                if (axial_) {
+                    if (setup_.hoisting == Hoisting::hook_speed) {
+                        power[hoist_work] = -a * v;
+                        dv = 0.0;
+                    } else {
+                        power[hoist_work] = -p_.hook_load * v;
+                    }
+                }
+            }
+            if (axial_ && i == setup_.excitation_node) power[excitation_work] = excitation_force(t) * v;
+            dx[omega(i)] = dw;
+            if (axial_) {
+                dx[position(i)] = v;
+                dx[speed(i)] = dv;
+            }
+            if (i < n) {
+                const double dw_e = x[omega(i + 1)] - w;
+                double d = p_.damping_time * lumped_.torsional_stiffness[i] * dw_e * dw_e;
+                if (axial_) {
+                    const double dv_e = x[speed(i + 1)] - v;
+                    d += p_.damping_time * lumped_.axial_stiffness[i] * dv_e * dv_e;
+                }
+                power[damping_work] += d;
+            }
+        }
+        if (g != nullptr && pi_drive()) drive_guards(x, mode, g + k);
+        for (std::size_t j = 0; j < work_count; ++j) dx[work_offset() + j] = power[j];
+    }
+
+    /// Every node's coupling reaches its neighbours' blocks only (node i's accelerations read nodes i - 1 .. i + 1).
+    Bandwidths jacobian_bandwidths() const { return {block_ + 1, block_ + 1}; }
+
+    /// The analytic Jacobian inside the band (the work integrals' rows left out, see the header comment).
+    template <class Add, class L = WallLaw, class B = Bit,
+              std::enable_if_t<law_has_partials_v<L> && law_has_partials_v<B>, int> = 0>
+    void jacobian_entries(double t, const double* x, const ContactModes& mode, Add&& add) const {
+        const std::size_t n = setup_.elements;
+        const double beta = p_.damping_time;
+        for (std::size_t i = 0; i <= n; ++i) {
+            add(theta(i), omega(i), 1.0);
+            if (axial_) add(position(i), speed(i), 1.0);
+            const double w = x[omega(i)];
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, i, s, a);
+            const std::size_t c = contact_of_[i];
+            // how the rotation's and the axial motion's accelerations follow S and P (0 while held)
+            double torque_share = 1.0, axial_share = 1.0;
+            const bool top_rotation_held = i == 0 && !pi_drive();
+            const bool top_axial_held = i == 0 && setup_.hoisting == Hoisting::hook_speed;
+            if (c != npos) {
+                if (axial_) {
+                    const int m = mode[c];
+                    if (Wall2::set_valued && m == Wall2::stick_mode) torque_share = axial_share = 0.0;
+                    const PlanarPartials<Z> d = walls2_[c].partials(w, x[speed(i)], x + law_state(i), m);
+                    const double J = inertia_[i], M = mass_[i], r = radius_[i];
+                    add(omega(i), omega(i), -r * d.tangential_w / J);
+                    add(omega(i), speed(i), -r * d.tangential_v / J);
+                    add(speed(i), omega(i), -d.axial_w / M);
+                    add(speed(i), speed(i), -d.axial_v / M);
+                    for (std::size_t j = 0; j < Z; ++j) {
+                        add(omega(i), law_state(i) + j, -r * d.tangential_z[j] / J);
+                        add(speed(i), law_state(i) + j, -d.axial_z[j] / M);
+                        add(law_state(i) + j, omega(i), d.rate_w[j]);
+                        add(law_state(i) + j, speed(i), d.rate_v[j]);
+                        for (std::size_t q = 0; q < Z; ++q) add(law_state(i) + j, law_state(i) + q, d.rate_z[j][q]);
+                    }
+                } else {
+                    const DiscPartials<Z> d = walls1_[c].partials(w, s, x + law_state(i), mode[c], inertia_[i]);
+                    torque_share = 1.0 - d.torque_shaft;
+                    add(omega(i), omega(i), -d.torque_speed / inertia_[i]);
+                    for (std::size_t j = 0; j < Z; ++j) {
+                        add(omega(i), law_state(i) + j, -d.torque_state[j] / inertia_[i]);
+                        add(law_state(i) + j, omega(i), d.rate_speed[j]);
+                        for (std::size_t q = 0; q < Z; ++q) add(law_state(i) + j, law_state(i) + q, d.rate_state[j][q]);
+                    }
+                }
+            }
+            if constexpr (on_bottom) {
+                if (i == n) {
+                    const DiscPartials<ZB> d = bit_contact_[0].partials(w, s, x + bit_state(), mode[bit_slot_], inertia_[i]);
+                    torque_share = 1.0 - d.torque_shaft;
+                    add(omega(i), omega(i), -d.torque_speed / inertia_[i]);
+                    for (std::size_t j = 0; j < ZB; ++j) {
+                        add(omega(i), bit_state() + j, -d.torque_state[j] / inertia_[i]);
+                        add(bit_state() + j, omega(i), d.rate_speed[j]);
+                        for (std::size_t q = 0; q < ZB; ++q) add(bit_state() + j, bit_state() + q, d.rate_state[j][q]);
+                    }
+                }
+            }
+            if (top_rotation_held) torque_share = 0.0;
+            if (top_axial_held) axial_share = 0.0;
+            // S = tau_i - tau_{i-1} (+ T_m): d/dth and d/dw of the neighbouring elements
+            if (torque_share != 0.0) {
+                const double f = torque_share / inertia_[i];
+                if (i < n) {
+                    const double k = lumped_.torsional_stiffness[i];
+                    add(omega(i), theta(i + 1), f * k);
+                    add(omega(i), theta(i), -f * k);
+                    add(omega(i), omega(i + 1), f * beta * k);
+                    add(omega(i), omega(i), -f * beta * k);
+                }
+                if (i > 0) {
+                    const double k = lumped_.torsional_stiffness[i - 1];
+                    add(omega(i), theta(i - 1), f * k);
+                    add(omega(i), theta(i), -f * k);
+                    add(omega(i), omega(i - 1), f * beta * k);
+                    add(omega(i), omega(i), -f * beta * k);
+                }
+                if (i == 0 && pi_drive() && mode[drive_slot_] == 0) {
+                    add(omega(0), omega(0), -f * p_.proportional_gain);
+                    add(omega(0), speed_error_integral, f * p_.integral_gain);
+                }
+            }
+            if (axial_ && axial_share != 0.0) {
+                const double f = axial_share / mass_[i];
+                if (i < n) {
+                    const double k = lumped_.axial_stiffness[i];
+                    add(speed(i), position(i + 1), f * k);
+                    add(speed(i), position(i), -f * k);
+                    add(speed(i), speed(i + 1), f * beta * k);
+                    add(speed(i), speed(i), -f * beta * k);
+                }
+                if (i > 0) {
+                    const double k = lumped_.axial_stiffness[i - 1];
+                    add(speed(i), position(i - 1), f * k);
+                    add(speed(i), position(i), -f * k);
+                    add(speed(i), speed(i - 1), f * beta * k);
+                    add(speed(i), speed(i), -f * beta * k);
+                }
+            }
+        }
+        if (pi_drive() && mode[drive_slot_] == 0) add(speed_error_integral, omega(0), -1.0);
+    }
+
+    int guard_direction(std::size_t, const ContactModes&) const { return -1; }
+    const char* guard_name(std::size_t i, const ContactModes& mode) const {
+        const int m = mode[guard_slot_[i]];
+        return guard_names_[i][static_cast<std::size_t>(std::clamp(m, -3, 3) + 3)].c_str();
+    }
+    /// Names of the codes guard_mode gives: wall contact modes as they are, the bit's + 20, the drive's + 10.
+    const char* mode_name(int code) const {
+        if (code >= 17 && code <= 23) return bit_mode_names[static_cast<std::size_t>(code - 17)];
+        if (code >= 9 && code <= 11) return drive_mode_names[static_cast<std::size_t>(code - 9)];
+        if (axial_) return Wall2::mode_name(code);
+        if (!walls1_.empty()) return walls1_[0].mode_name(code);
+        return contact_mode_name(code);
+    }
+    int mode_code(const ContactModes& mode) const {
+        int stuck = 0;
+        for (std::size_t c = 0; c < contacts_; ++c) stuck += mode[c] == stick;
+        return stuck;
+    }
+    int guard_mode(std::size_t i, const ContactModes& mode) const { return slot_code(guard_slot_[i], mode); }
+    /// The mode code of a slot (wall contact c < contacts, then the bit, then the drive).
+    int slot_code(std::size_t slot, const ContactModes& mode) const {
+        const int m = mode[slot];
+        if (slot < contacts_) return m;
+        if (on_bottom && slot == bit_slot_) return 20 + m;
+        return 10 + m;
+    }
+    std::size_t contact_count() const { return contacts_; }
+    std::size_t bit_slot() const { return bit_slot_; }
+    std::size_t drive_slot() const { return drive_slot_; }
+
+    ContactModes initial_mode(double t, const double* x) const {
+        ContactModes mode(slots_, 0);
+        if (pi_drive()) {
+            const double u = controller_torque(x);
+            mode[drive_slot_] = static_cast<std::int8_t>(u > p_.torque_limit ? 1 : u < -p_.torque_limit ? -1 : 0);
+        }
+        const std::size_t n = setup_.elements;
+        for (std::size_t i = 0; i <= n; ++i) {
+            const std::size_t c = contact_of_[i];
+            if (c == npos && !(on_bottom && i == n)) continue;
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, i, s, a);
+            if (c != npos) {
+                mode[c] = static_cast<std::int8_t>(
+                    axial_ ? walls2_[c].initial_mode(x[omega(i)], x[speed(i)], s, a)
+                           : walls1_[c].initial_mode(x[omega(i)], s, x + law_state(i), inertia_[i]));
+            }
+            if constexpr (on_bottom)
+                if (i == n)
+                    mode[bit_slot_] = static_cast<std::int8_t>(
+                        bit_contact_[0].initial_mode(x[omega(i)], s, x + bit_state(), inertia_[i]));
+        }
+        return mode;
+    }
+
+    ContactModes switch_mode(double t, double* x, const ContactModes& mode, const int* fired) const {
+        ContactModes next = mode;
+        const std::size_t n = setup_.elements;
+        std::size_t k = 0;
+        for (std::size_t i = 0; i <= n; ++i) {
+            const std::size_t c = contact_of_[i];
+            const bool has_bit = on_bottom && i == n;
+            if (c == npos && !has_bit) continue;
+            if (c != npos) {
+                if (any(fired + k, wall_guards_)) {
+                    double s = 0.0, a = 0.0;
+                    loads(t, x, next, i, s, a);
+                    if (axial_) {
+                        double lost = 0.0;
+                        next[c] = static_cast<std::int8_t>(walls2_[c].switch_mode(
+                            x[omega(i)], x[speed(i)], s, a, mode[c], inertia_[i], mass_[i], lost));
+                        x[work_offset() + wall_friction_work] += lost;
+                    } else {
+                        next[c] = static_cast<std::int8_t>(walls1_[c].switch_mode(
+                            t, x[omega(i)], s, x + law_state(i), mode[c], fired + k, inertia_[i]));
+                    }
+                }
+                k += wall_guards_;
+            }
+            if constexpr (on_bottom) {
+                if (has_bit) {
+                    if (any(fired + k, BitContact::guard_count)) {
+                        double s = 0.0, a = 0.0;
+                        loads(t, x, next, i, s, a);
+                        next[bit_slot_] = static_cast<std::int8_t>(bit_contact_[0].switch_mode(
+                            t, x[omega(i)], s, x + bit_state(), mode[bit_slot_], fired + k, inertia_[i]));
+                    }
+                    k += BitContact::guard_count;
+                }
+            }
+        }
+        if (pi_drive() && any(fired + k, 2)) {
+            const int m = mode[drive_slot_];
+            next[drive_slot_] = static_cast<std::int8_t>(m != 0 ? 0 : fired[k] != 0 ? 1 : -1);
+        }
+        return next;
+    }
+
+    std::vector<std::string> state_names() const {
+        std::vector<std::string> names(state_size());
+        names[speed_error_integral] = "speed_error_integral";
+        for (std::size_t i = 0; i <= setup_.elements; ++i) {
+            const std::string tag = "_" + std::to_string(i);
+            names[theta(i)] = "theta" + tag;
+            names[omega(i)] = "omega" + tag;
+            if (axial_) {
+                names[position(i)] = "u" + tag;
+                names[speed(i)] = "v" + tag;
+            }
+            if constexpr (Z > 0)
+                for (std::size_t j = 0; j < Z; ++j) names[law_state(i) + j] = WallLaw::state_names[j] + tag;
+        }
+        if constexpr (ZB > 0)
+            for (std::size_t j = 0; j < ZB; ++j) names[bit_state() + j] = std::string("bit_") + Bit::state_names[j];
+        static constexpr std::array<const char*, work_count> work{"drive_work",         "hoist_work",
+                                                                  "excitation_work",    "wall_friction_work",
+                                                                  "damping_work",       "bit_work"};
+        for (std::size_t j = 0; j < work_count; ++j) names[work_offset() + j] = work[j];
+        return names;
+    }
+
+    /// The total wall friction torque, N m (sum of r_i times the circumferential friction force).
+    double friction_force(double t, const double* x, const ContactModes& mode) const {
+        double total = 0.0;
+        const std::size_t n = setup_.elements;
+        for (std::size_t i = 0; i <= n; ++i) {
+            const std::size_t c = contact_of_[i];
+            if (c == npos) continue;
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, i, s, a);
+            total += axial_ ? walls2_[c].respond(x[omega(i)], x[speed(i)], s, a, x + law_state(i), mode[c],
+                                                 inertia_[i], mass_[i]).torque
+                            : walls1_[c].respond(x[omega(i)], s, x + law_state(i), mode[c], inertia_[i]).torque;
+        }
+        return total;
+    }
+    /// The wall contact's axial friction force at contact c, N (axial runs), in the direction of motion resisted.
+    double wall_axial_force(double t, const double* x, const ContactModes& mode, std::size_t c) const {
+        if (!axial_) return 0.0;
+        const std::size_t i = setup_.contact_nodes[c];
+        double s = 0.0, a = 0.0;
+        loads(t, x, mode, i, s, a);
+        return walls2_[c].respond(x[omega(i)], x[speed(i)], s, a, x + law_state(i), mode[c], inertia_[i], mass_[i])
+            .axial_force;
+    }
+    /// The torque on bit, N m (0 off bottom).
+    double bit_torque(double t, const double* x, const ContactModes& mode) const {
+        if constexpr (on_bottom) {
+            const std::size_t n = setup_.elements;
+            double s = 0.0, a = 0.0;
+            loads(t, x, mode, n, s, a);
+            return bit_contact_[0].respond(x[omega(n)], s, x + bit_state(), mode[bit_slot_], inertia_[n]).torque;
+        } else {
+            (void)t, (void)x, (void)mode;
+            return 0.0;
+        }
+    }
+
+private:
+    static constexpr std::array<const char*, 7> bit_mode_names{"bit_mode_-3", "bit_mode_-2", "bit_slip_negative",
+                                                               "bit_stick",   "bit_slip_positive", "bit_mode_2",
+                                                               "bit_mode_3"};
+    static constexpr std::array<const char*, 3> drive_mode_names{"drive_at_negative_limit", "drive_linear",
+                                                                 "drive_at_positive_limit"};
+
+    static bool any(const int* fired, std::size_t count) {
+        for (std::size_t j = 0; j < count; ++j)
+            if (fired[j] != 0) return true;
+        return false;
+    }
+
+    void drive_guards(const double* x, const ContactModes& mode, double* g) const {
+        const double u = controller_torque(x), limit = p_.torque_limit;
+        const int m = mode[drive_slot_];
+        if (m == 0) {
+            g[0] = limit - u;  // reaches +T_max
+            g[1] = limit + u;  // reaches -T_max
+        } else {
+            g[0] = m * (u - m * limit);  // the PI torque comes back inside the limit
+            g[1] = 1.0;
+        }
+    }
+
+    /// Guard k of slot `slot`, with its name for each mode the slot can be in (events name the node).
+    void add_guard(std::size_t slot, std::size_t k) {
+        guard_slot_.push_back(slot);
+        std::array<std::string, 7> names;
+        for (int m = -3; m <= 3; ++m) {
+            std::string name;
+            if (slot < contacts_) {
+                name = "node_" + std::to_string(setup_.contact_nodes[slot]) + ".";
+                if (axial_) name += Wall2::guard_name(m);
+                else name += walls1_[slot].guard_name(k, m);
+            } else if (on_bottom && slot == bit_slot_) {
+                if constexpr (on_bottom) name = std::string("bit.") + bit_contact_[0].guard_name(k, m);
+            } else {
+                name = m == 0 ? (k == 0 ? "top_drive.positive_torque_limit" : "top_drive.negative_torque_limit")
+                              : "top_drive.back_inside_limit";
+            }
+            names[static_cast<std::size_t>(m + 3)] = std::move(name);
+        }
+        guard_names_.push_back(std::move(names));
+    }
+
+    StringRigParams p_;
+    StringRigSetup setup_;
+    WallLaw law_;
+    Bit bit_;
+    LumpedString lumped_;
+    bool axial_ = false;
+    std::size_t block_ = 2;
+    std::vector<double> inertia_, mass_, weight_, radius_;
+    std::vector<std::size_t> contact_of_;
+    std::vector<Wall1> walls1_;
+    std::vector<Wall2> walls2_;
+    std::vector<BitContact> bit_contact_;  // one element with the bit on bottom
+    std::size_t contacts_ = 0, bit_slot_ = 0, drive_slot_ = 0, slots_ = 0, wall_guards_ = 0;
+    std::vector<std::size_t> guard_slot_;
+    std::vector<std::array<std::string, 7>> guard_names_;
+    std::vector<double> start_;
+};
+
+}  // namespace frictionsim

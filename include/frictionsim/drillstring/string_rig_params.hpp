@@ -1,0 +1,91 @@
+// The parameters of a StringRig: the scalars in a table (StringRigParams::fields, validated by validate_fields),
+// the discrete choices (element count, top-drive kind, axial motion, hoisting, contact nodes, normal forces,
+// excitation node) in StringRigSetup, checked by the rig's constructor naming the member.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "../parameters.hpp"
+
+namespace frictionsim {
+
+/// How the top of the string turns: a motor of inertia J_td under PI speed control with a torque limit (paper
+/// 001's drive, anti-windup by conditional integration), or a prescribed surface speed (an infinitely stiff drive).
+enum class TopDrive { pi_motor, prescribed_speed };
+/// The axial top boundary: the hook moves at a prescribed speed, or holds a prescribed hook load.
+enum class Hoisting { hook_speed, hook_load };
+
+/// Scalar parameters. Defaults: a 60 rpm top drive on a water-based mud, a vertical hole.
+struct StringRigParams {
+    double damping_time = 0.0;          ///< beta, s: element damping c_e = beta k_e (torsional and axial)
+    double top_drive_inertia = 500.0;   ///< J_td, kg m^2 (rotor and gearbox referred to the quill)
+    double surface_speed = 6.283185307179586;  ///< w_set, rad/s (60 rpm)
+    double proportional_gain = 5.0e3;   ///< k_p, N m s/rad
+    double integral_gain = 2.0e3;       ///< k_i, N m/rad
+    double torque_limit = 6.0e4;        ///< T_max, N m
+    double mud_density = 1200.0;        ///< rho_mud, kg/m^3 (buoyancy)
+    double inclination = 0.0;           ///< hole inclination from vertical, rad
+    double hook_speed = 0.0;            ///< m/s along the hole, positive down (running in)
+    double hook_load = 0.0;             ///< N, upwards on the top node
+    double excitation_amplitude = 0.0;  ///< F_x, N: axial force F_x sin(2 pi f_x t) at the excitation node
+    double excitation_frequency = 0.0;  ///< f_x, Hz
+    double stick_speed = 1e-4;          ///< m/s: where an axially moving contact is caught to stick (wall_contact.hpp)
+    double initial_speed = 0.0;         ///< rad/s: the whole string's rotation at t = 0
+    double initial_axial_speed = 0.0;   ///< m/s: the whole string's axial speed at t = 0
+    double end_inertia = 0.0;           ///< J_end, kg m^2: a rigid BHA (or bit sub) added to node N
+    double end_mass = 0.0;              ///< m_end, kg: its mass (its buoyed weight joins node N's)
+
+    static constexpr std::array<Field<StringRigParams>, 17> fields();
+};
+
+inline constexpr std::array<Field<StringRigParams>, 17> StringRigParams::fields() {
+    using P = StringRigParams;
+    return {{
+        {"damping_time", "beta", "s", Rule::non_negative(), &P::damping_time,
+         "Structural damping: each element's damping is beta times its stiffness (modal ratio beta w / 2)."},
+        {"top_drive_inertia", "J_td", "kg m^2", Rule::positive(), &P::top_drive_inertia,
+         "Top-drive inertia at the quill (PI-controlled drive)."},
+        {"surface_speed", "w_set", "rad/s", Rule::finite(), &P::surface_speed,
+         "Set speed of the PI drive, or the prescribed surface speed."},
+        {"proportional_gain", "k_p", "N m s/rad", Rule::non_negative(), &P::proportional_gain, "PI proportional gain."},
+        {"integral_gain", "k_i", "N m/rad", Rule::non_negative(), &P::integral_gain, "PI integral gain."},
+        {"torque_limit", "T_max", "N m", Rule::positive(), &P::torque_limit, "Top-drive torque limit."},
+        {"mud_density", "rho_mud", "kg/m^3", Rule::non_negative(), &P::mud_density,
+         "Mud density (buoyancy); below the steel's."},
+        {"inclination", "I", "rad", Rule::interval(0.0, 3.141592653589793), &P::inclination,
+         "Hole inclination from vertical (straight hole)."},
+        {"hook_speed", "v_hook", "m/s", Rule::finite(), &P::hook_speed, "Prescribed hook speed, positive down."},
+        {"hook_load", "H", "N", Rule::finite(), &P::hook_load, "Prescribed hook load, upwards."},
+        {"excitation_amplitude", "F_x", "N", Rule::non_negative(), &P::excitation_amplitude,
+         "Axial excitation amplitude (hydraulic oscillator, agitator)."},
+        {"excitation_frequency", "f_x", "Hz", Rule::non_negative(), &P::excitation_frequency,
+         "Axial excitation frequency."},
+        {"stick_speed", "s_stick", "m/s", Rule::positive(), &P::stick_speed,
+         "Sliding speed at which an axially moving set-valued contact is caught to stick."},
+        {"initial_speed", "w0", "rad/s", Rule::finite(), &P::initial_speed, "Rotation of the whole string at t = 0."},
+        {"initial_axial_speed", "v0", "m/s", Rule::finite(), &P::initial_axial_speed,
+         "Axial speed of the whole string at t = 0."},
+        {"end_inertia", "J_end", "kg m^2", Rule::non_negative(), &P::end_inertia,
+         "Inertia of a rigid BHA added to the bit node."},
+        {"end_mass", "m_end", "kg", Rule::non_negative(), &P::end_mass, "Mass of a rigid BHA added to the bit node."},
+    }};
+}
+
+/// The discrete choices of a StringRig.
+struct StringRigSetup {
+    std::size_t elements = 20;                 ///< N: nodes 0 (top) .. N (bit)
+    TopDrive top_drive = TopDrive::pi_motor;
+    bool axial = false;                        ///< also the axial motion (u, v per node), friction as a vector
+    Hoisting hoisting = Hoisting::hook_speed;  ///< with `axial`
+    bool wall_contacts = true;                 ///< false: no wall contact at all (contact_nodes ignored)
+    /// Nodes with a wall contact, increasing, in 1..N (the bit node only when the bit is off bottom). Empty: all.
+    std::vector<std::size_t> contact_nodes;
+    /// One normal force per contact node, N. Empty: the straight inclined hole's buoyed weight of each node
+    /// times sin(inclination).
+    std::vector<double> normal_forces;
+    std::size_t excitation_node = 0;           ///< node of the axial excitation (with `axial`)
+};
+
+}  // namespace frictionsim

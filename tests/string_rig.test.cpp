@@ -1,0 +1,650 @@
+// The drill-string rig (drillstring/string_rig.hpp) against physics: the free string's lowest torsional frequency
+// and its wave travel time from runs, the energy balance with stick-slip at many contacts, a one-element string
+// against a hand-written two-inertia model, the friction vector's drag reduction under rotation, per-contact
+// stick/slip and the stuck steady state, the integrators against each other, and the analytic banded Jacobian
+// against difference quotients.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "catch.hpp"
+#include "frictionsim/drillstring/string_rig.hpp"
+#include "frictionsim/friction/coulomb.hpp"
+#include "frictionsim/friction/dahl.hpp"
+#include "frictionsim/friction/lugre.hpp"
+#include "frictionsim/friction/stribeck.hpp"
+#include "frictionsim/simulate.hpp"
+#include "rejection.hpp"
+
+using namespace frictionsim;
+
+namespace {
+
+/// 5" drill pipe of length L.
+DrillString pipe_string(double length) {
+    PipeSection s;
+    s.length = length;
+    return DrillString({s});
+}
+
+/// First root of x tan(x) = ratio in (0, pi/2), by bisection.
+double first_root(double ratio) {
+    double lo = 0.0, hi = pi / 2.0;
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (mid * std::tan(mid) < ratio ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// Times at which column c of r crosses `level` upwards, by linear interpolation between rows.
+std::vector<double> upward_crossings(const Result& r, std::size_t c, double level) {
+    std::vector<double> out;
+    for (std::size_t row = 1; row < r.rows(); ++row) {
+        const double a = r.state(row - 1, c) - level, b = r.state(row, c) - level;
+        if (a < 0.0 && b >= 0.0) out.push_back(r.t[row - 1] + (r.t[row] - r.t[row - 1]) * (-a) / (b - a));
+    }
+    return out;
+}
+
+std::vector<double> grid(double t_end, double dt) {
+    std::vector<double> t;
+    const auto steps = static_cast<std::size_t>(std::llround(t_end / dt));
+    for (std::size_t k = 0; k <= steps; ++k) t.push_back(std::min(t_end, dt * static_cast<double>(k)));
+    return t;
+}
+
+/// A stick-slip case: 1000 m of pipe and a BHA in a 60 degree hole, Coulomb walls (mu 0.2, mu_s 0.3) at every
+/// node, a PI top drive and a velocity-weakening bit on bottom.
+template <class Law = Coulomb>
+StringRig<Law, VelocityWeakeningBit> stick_slip_rig(std::size_t n, Law law = Coulomb(0.2, 0.3)) {
+    StringRigParams p;
+    p.inclination = pi / 3.0;
+    p.damping_time = 2e-3;
+    p.end_inertia = 40.0;
+    p.end_mass = 20e3;
+    p.surface_speed = 4.0;
+    p.top_drive_inertia = 300.0;
+    p.proportional_gain = 3e3;
+    p.integral_gain = 1e3;
+    StringRigSetup s;
+    s.elements = n;
+    VelocityWeakeningBit::Params b;
+    b.weight_on_bit = 6e4;
+    return StringRig<Law, VelocityWeakeningBit>(pipe_string(1000.0), p, s, std::move(law), VelocityWeakeningBit(b));
+}
+
+}  // namespace
+
+TEST_CASE("string rig: bad set-ups name the parameter", "[string_rig][validation]") {
+    const DrillString string = pipe_string(500.0);
+    const auto make = [&](StringRigParams p, StringRigSetup s) {
+        return [=] { (void)StringRig<Coulomb>(string, p, s, Coulomb(0.3)); };
+    };
+    StringRigSetup s;
+    StringRigParams p;
+    s.elements = 0;
+    CHECK(rejected_parameter(make(p, s)) == "elements");
+    s.elements = 10;
+    p.damping_time = -1.0;
+    CHECK(rejected_parameter(make(p, s)) == "damping_time");
+    p = StringRigParams{};
+    p.mud_density = 8000.0;
+    CHECK(rejected_parameter(make(p, s)) == "mud_density");
+    p = StringRigParams{};
+    s.contact_nodes = {0, 3};
+    CHECK(rejected_parameter(make(p, s)) == "contact_nodes");
+    s.contact_nodes = {4, 3};
+    CHECK(rejected_parameter(make(p, s)) == "contact_nodes");
+    s.contact_nodes = {3, 4};
+    s.normal_forces = {1.0};
+    CHECK(rejected_parameter(make(p, s)) == "normal_forces");
+    s.normal_forces = {1.0, -2.0};
+    CHECK(rejected_parameter(make(p, s)) == "normal_forces");
+    s.normal_forces.clear();
+    s.excitation_node = 11;
+    CHECK(rejected_parameter(make(p, s)) == "excitation_node");
+    StringRigSetup bit_node;
+    bit_node.elements = 5;
+    bit_node.contact_nodes = {5};  // the bit's node, with the bit on bottom
+    CHECK(rejected_parameter([&] {
+              (void)StringRig<Coulomb, VelocityWeakeningBit>(string, StringRigParams{}, bit_node, Coulomb(0.3));
+          }) == "contact_nodes");
+    VelocityWeakeningBit::Params b;
+    b.kinetic_coefficient = 0.9;  // above mu_sb
+    CHECK(rejected_parameter([&] { (void)VelocityWeakeningBit(b); }) == "static_coefficient");
+    StringRig<Coulomb> rig(string, StringRigParams{}, StringRigSetup{}, Coulomb(0.3));
+    CHECK(rejected_parameter([&] { rig.set_initial_state({1.0}); }) == "initial_state");
+}
+
+TEST_CASE("string rig: layout, names, normal forces of an inclined hole, the band", "[string_rig]") {
+    StringRigParams p;
+    p.inclination = 0.5;
+    p.mud_density = 1500.0;
+    StringRigSetup s;
+    s.elements = 4;
+    s.axial = true;
+    const StringRig<Dahl> rig(pipe_string(400.0), p, s, Dahl(0.3, 1e5));
+    const std::vector<std::string> names = rig.state_names();
+    REQUIRE(names.size() == rig.state_size());
+    CHECK(names[rig.theta(3)] == "theta_3");
+    CHECK(names[rig.omega(3)] == "omega_3");
+    CHECK(names[rig.position(2)] == "u_2");
+    CHECK(names[rig.speed(2)] == "v_2");
+    CHECK(names[rig.law_state(4)] == "dahl_deflection_4");
+    CHECK(names.back() == "bit_work");
+    // buoyed weight (rho_s - rho_mud) g A dx per interior node, times sin(inclination)
+    const PipeSection pipe;
+    const double per_node = (pipe.density - 1500.0) * pipe.area() * 100.0 * 9.80665 * std::sin(0.5);
+    REQUIRE(rig.normal_forces().size() == 4);  // nodes 1..4
+    CHECK(rig.normal_forces()[0] == Approx(per_node).epsilon(1e-12));
+    CHECK(rig.normal_forces()[3] == Approx(0.5 * per_node).epsilon(1e-12));
+    CHECK(rig.node_radius()[2] == Approx(0.0635));
+}
+
+TEST_CASE("string rig: a free oscillation's period is the continuous string's kL tan(kL) = J_string / J_BHA",
+          "[string_rig]") {
+    // 1000 m of pipe, top held (prescribed surface speed 0), a BHA of half the string's inertia at the bottom,
+    // started in the continuous first mode shape th(x) = sin(k x) and released
+    const DrillString string = pipe_string(1000.0);
+    const PipeSection& pipe = string.sections()[0];
+    const double j_string = pipe.inertia_per_length() * 1000.0, c = std::sqrt(pipe.shear_modulus / pipe.density);
+    const double kl = first_root(2.0), w1 = kl * c / 1000.0;  // J_BHA = J_string / 2
+    StringRigParams p;
+    p.surface_speed = 0.0;
+    p.end_inertia = 0.5 * j_string;
+    StringRigSetup s;
+    s.elements = 40;
+    s.top_drive = TopDrive::prescribed_speed;
+    s.wall_contacts = false;
+    StringRig<Coulomb> rig(string, p, s, Coulomb(0.3));
+    std::vector<double> x = rig.initial_state();
+    for (std::size_t i = 0; i <= 40; ++i) x[rig.theta(i)] = 1e-2 * std::sin(kl * static_cast<double>(i) / 40.0);
+    rig.set_initial_state(x);
+    const double period = 2.0 * pi / w1;
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-14;
+    o.output_times = grid(6.0 * period, period / 400.0);
+    const Result r = simulate(rig, 6.0 * period, o);
+    REQUIRE(r.completed);
+    const std::vector<double> up = upward_crossings(r, rig.theta(40), 0.0);
+    REQUIRE(up.size() >= 5);
+    const double measured = (up.back() - up.front()) / static_cast<double>(up.size() - 1);
+    // the lumped string's error at N = 40 is ~5e-5 (tests/drillstring.test.cpp: 1.2e-4 at N = 25, second order)
+    CHECK(measured / period == Approx(1.0).margin(3e-4));
+    // no wall, no bit, no damping: the energy stays
+    const std::size_t last = r.rows() - 1;
+    const double e0 = rig.elastic_energy(x.data()), e1 = rig.elastic_energy(&r.states[last * r.state_count()]) +
+                                                         rig.kinetic_energy(&r.states[last * r.state_count()]);
+    CHECK(e1 == Approx(e0).epsilon(1e-7));
+}
+
+TEST_CASE("string rig: a speed step at the top reaches the bit after L / sqrt(G / rho)", "[string_rig]") {
+    // 2000 m of pipe at rest, free at the bottom; the top steps to w = 1 rad/s. The front's middle travels at c
+    // and doubles at the free end: the bit's speed crosses w at L / c, and is still at rest well before.
+    const DrillString string = pipe_string(2000.0);
+    const PipeSection& pipe = string.sections()[0];
+    const double arrival = 2000.0 / std::sqrt(pipe.shear_modulus / pipe.density);
+    StringRigParams p;
+    p.surface_speed = 1.0;
+    StringRigSetup s;
+    s.elements = 200;
+    s.top_drive = TopDrive::prescribed_speed;
+    s.wall_contacts = false;
+    const StringRig<Coulomb> rig(string, p, s, Coulomb(0.3));
+    SolverOptions o;
+    o.rtol = 1e-8;
+    o.atol = 1e-12;
+    o.output_times = grid(1.3 * arrival, arrival / 2000.0);
+    const Result r = simulate(rig, 1.3 * arrival, o);
+    REQUIRE(r.completed);
+    const std::vector<double> up = upward_crossings(r, rig.omega(200), 1.0);
+    REQUIRE_FALSE(up.empty());
+    CHECK(up.front() / arrival == Approx(1.0).margin(0.01));
+    double early = 0.0;  // the bit's largest speed before 0.9 L / c
+    for (std::size_t row = 0; row < r.rows() && r.t[row] < 0.9 * arrival; ++row)
+        early = std::max(early, std::abs(r.state(row, rig.omega(200))));
+    CHECK(early < 1e-2);
+    CHECK(r.state(r.rows() - 1, rig.omega(200)) == Approx(2.0).margin(0.3));  // the reflected front: 2 w
+}
+
+TEST_CASE("string rig: energy balance with stick-slip at many wall contacts and at the bit", "[string_rig]") {
+    const auto rig = stick_slip_rig(10);
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-10;
+    o.output_times = grid(30.0, 0.5);
+    const Result r = simulate(rig, 30.0, o);
+    REQUIRE(r.completed);
+    // stick-slip: several wall contacts and the bit switch, each on its own
+    std::set<std::string> sticking;
+    int bit_sticks = 0;
+    for (const Event& e : r.events) {
+        if (e.mode_after_name == "stick") sticking.insert(e.name.substr(0, e.name.find('.')));
+        if (e.mode_after_name == "bit_stick") ++bit_sticks;
+    }
+    CHECK(sticking.size() >= 5);
+    CHECK(bit_sticks >= 3);
+    // each contact's events chain: a contact leaves the mode it last entered, whatever the others do
+    std::map<std::string, std::string> last_mode;
+    for (const Event& e : r.events) {
+        const std::string who = e.name.substr(0, e.name.find('.'));
+        if (last_mode.count(who)) CHECK(e.mode_before_name == last_mode[who]);
+        CHECK(e.mode_before_name != e.mode_after_name);
+        last_mode[who] = e.mode_after_name;
+    }
+    const std::size_t w = rig.work_offset(), n = r.state_count();
+    for (std::size_t row = 1; row < r.rows(); row += 7) {
+        const double* x0 = &r.states[0];
+        const double* x = &r.states[row * n];
+        const double stored = rig.kinetic_energy(x) + rig.elastic_energy(x) - rig.kinetic_energy(x0) -
+                              rig.elastic_energy(x0);
+        const double lost = x[w + StringRig<Coulomb, VelocityWeakeningBit>::wall_friction_work] +
+                            x[w + StringRig<Coulomb, VelocityWeakeningBit>::damping_work] +
+                            x[w + StringRig<Coulomb, VelocityWeakeningBit>::bit_work];
+        const double drive = x[w + StringRig<Coulomb, VelocityWeakeningBit>::drive_work];
+        CHECK(drive == Approx(stored + lost).epsilon(1e-7));
+    }
+    const double* x = &r.states[(r.rows() - 1) * n];
+    CHECK(x[w + StringRig<Coulomb, VelocityWeakeningBit>::wall_friction_work] > 0.0);
+    CHECK(x[w + StringRig<Coulomb, VelocityWeakeningBit>::bit_work] > 0.0);
+    CHECK(x[w + StringRig<Coulomb, VelocityWeakeningBit>::damping_work] > 0.0);
+}
+
+namespace {
+
+/// The one-element string written out by hand: top drive (inertia J0 + half the pipe) and BHA (J1) joined by a
+/// spring k and damper c, the PI law on the top, the velocity-weakening bit with its stick at w1 = 0.
+/// States: integral, th0, w0, th1, w1. Mode: the bit's (-1, 0, +1).
+struct TwoInertia {
+    static constexpr std::size_t state_size = 5, guard_count = 2;
+    double j0, j1, k, c, kp, ki, w_set;
+    VelocityWeakeningBit bit;
+    double spring(const double* x) const { return k * (x[1] - x[3]) + c * (x[2] - x[4]); }
+    double limit() const { return bit.static_limit(bit.weight_on_bit()); }
+    void rhs(double, const double* x, int mode, double* dx) const {
+        const double s = spring(x);
+        const double bit_torque =
+            mode == 0 ? s : bit.params().bit_radius * bit.weight_on_bit() * bit.coefficient(x[4]) * mode;
+        dx[0] = w_set - x[2];
+        dx[1] = x[2];
+        dx[2] = (kp * (w_set - x[2]) + ki * x[0] - s) / j0;
+        dx[3] = x[4];
+        dx[4] = mode == 0 ? 0.0 : (s - bit_torque) / j1;
+    }
+    void guards(double, const double* x, int mode, double* g) const {
+        if (mode == 0) {
+            g[0] = limit() - spring(x);
+            g[1] = limit() + spring(x);
+        } else {
+            g[0] = mode * x[4];
+            g[1] = 1.0;
+        }
+    }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t, int) const { return "bit"; }
+    int initial_mode(double, const double*) const { return 0; }
+    int switch_mode(double, double* x, int mode, const int* fired) const {
+        if (mode == 0) return fired[0] != 0 ? 1 : -1;
+        x[4] = 0.0;
+        return std::abs(spring(x)) <= limit() ? 0 : (spring(x) > 0.0 ? 1 : -1);
+    }
+    const char* mode_name(int) const { return "bit"; }
+    std::array<const char*, 5> state_names() const { return {"i", "th0", "w0", "th1", "w1"}; }
+    double friction_force(double, const double*, int) const { return 0.0; }
+    std::array<double, 5> initial_state() const { return {}; }
+};
+
+}  // namespace
+
+TEST_CASE("string rig: one element is the two-inertia top drive and bit model", "[string_rig]") {
+    // 1000 m of pipe in one element, a 400 kg m^2 top drive, a 50 kg m^2 BHA, the velocity-weakening bit:
+    // stick-slip of the bit with the top drive under PI control
+    const DrillString string = pipe_string(1000.0);
+    StringRigParams p;
+    p.top_drive_inertia = 400.0;
+    p.end_inertia = 50.0;
+    p.damping_time = 0.01;
+    p.surface_speed = 3.0;
+    p.proportional_gain = 2e3;
+    p.integral_gain = 500.0;
+    p.torque_limit = 1e6;
+    StringRigSetup s;
+    s.elements = 1;
+    s.wall_contacts = false;
+    VelocityWeakeningBit::Params bp;
+    bp.weight_on_bit = 5e4;
+    const VelocityWeakeningBit bit(bp);
+    const StringRig<Coulomb, VelocityWeakeningBit> rig(string, p, s, Coulomb(0.3), bit);
+    const LumpedString& l = rig.lumped();
+    const TwoInertia hand{400.0 + l.node_inertia[0], 50.0 + l.node_inertia[1], l.torsional_stiffness[0],
+                          0.01 * l.torsional_stiffness[0], 2e3, 500.0, 3.0, bit};
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.output_times = grid(40.0, 0.1);
+    const Result a = simulate(rig, 40.0, o), b = simulate(hand, 40.0, o);
+    REQUIRE((a.completed && b.completed));
+    REQUIRE(a.rows() == b.rows());
+    for (std::size_t row = 0; row < a.rows(); ++row) {
+        CHECK(a.state(row, rig.omega(1)) == Approx(b.state(row, 4)).margin(1e-6));
+        CHECK(a.state(row, rig.omega(0)) == Approx(b.state(row, 2)).margin(1e-6));
+    }
+    REQUIRE(a.events.size() == b.events.size());
+    CHECK(a.events.size() >= 6);  // the bit sticks and slips
+    for (std::size_t k = 0; k < a.events.size(); ++k) CHECK(a.events[k].time == Approx(b.events[k].time).margin(1e-7));
+}
+
+namespace {
+
+/// A horizontal string tripped in at v and turned at w, both prescribed at the top, after 6 s: the hook force,
+/// the surface torque, and the closed forms sum mu N v / |q|, sum mu N r (w r) / |q|, |q| = sqrt(v^2 + (w r)^2).
+template <class Law>
+void check_drag(const Law& law, double mu, double w) {
+    const double v = 0.2;
+    StringRigParams p;
+    p.inclination = pi / 2.0;
+    p.damping_time = 0.02;
+    p.surface_speed = w;
+    p.hook_speed = v;
+    p.initial_speed = w;
+    p.initial_axial_speed = v;
+    StringRigSetup s;
+    s.elements = 8;
+    s.axial = true;
+    s.top_drive = TopDrive::prescribed_speed;
+    const StringRig<Law> rig(pipe_string(300.0), p, s, law);
+    SolverOptions o;
+    o.rtol = 1e-9;
+    o.atol = 1e-12;
+    o.output_times = {6.0};
+    const Result r = simulate(rig, 6.0, o);
+    REQUIRE(r.completed);
+    const double* x = &r.states[0];
+    const ContactModes mode = rig.initial_mode(6.0, x);
+    double normal = 0.0;
+    for (double f : rig.normal_forces()) normal += f;
+    const double radius = rig.node_radius()[1], slide = std::hypot(v, w * radius);
+    // the hook holds the string back against the drag (no weight along a horizontal hole)
+    CHECK(-rig.hook_force(6.0, x, mode) == Approx(mu * normal * v / slide).epsilon(1e-6));
+    CHECK(rig.surface_torque(6.0, x, mode) == Approx(mu * normal * radius * w * radius / slide).margin(1e-6));
+    CHECK(x[rig.speed(8)] == Approx(v).epsilon(1e-8));  // steady: the whole string at the hook's speed
+}
+
+}  // namespace
+
+TEST_CASE("string rig: rotation cuts the axial drag as the friction vector predicts", "[string_rig]") {
+    for (double w : {0.0, 0.5, 2.0, 8.0}) check_drag(Coulomb(0.3), 0.3, w);
+    // Dahl, read along the resultant: saturated in steady sliding at mu N, the same drag
+    for (double w : {0.0, 2.0}) check_drag(Dahl(0.3, 1e6), 0.3, w);
+}
+
+TEST_CASE("string rig: a drive torque below the summed static wall torque leaves the string stuck",
+          "[string_rig]") {
+    StringRigParams p;
+    p.inclination = pi / 3.0;
+    p.surface_speed = 5.0;
+    p.proportional_gain = 1e4;
+    p.integral_gain = 1e4;
+    p.damping_time = 0.2;  // the top drive on the first element rings down (damping ratio ~0.4)
+    StringRigSetup s;
+    s.elements = 10;
+    const Coulomb law(0.3, 0.4);
+    StringRig<Coulomb> probe(pipe_string(1000.0), p, s, law);
+    double static_torque = 0.0;
+    for (std::size_t c = 0; c < probe.contact_count(); ++c)
+        static_torque += 0.4 * probe.normal_forces()[c] * probe.node_radius()[probe.contact_nodes()[c]];
+    p.torque_limit = 0.4 * static_torque;
+    const StringRig<Coulomb> rig(pipe_string(1000.0), p, s, law);
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.output_times = {30.0};
+    const Result r = simulate(rig, 30.0, o);
+    REQUIRE(r.completed);
+    const double* x = &r.states[0];
+    CHECK(r.mode[0] == static_cast<int>(rig.contact_count()));  // every wall contact stuck
+    for (std::size_t i = 1; i <= 10; ++i) CHECK(x[rig.omega(i)] == 0.0);  // held exactly
+    CHECK(x[rig.theta(10)] == 0.0);  // the lower string never moved
+    const ContactModes mode = rig.initial_mode(30.0, x);
+    CHECK(mode[rig.drive_slot()] == 1);  // the drive sits at its limit
+    // statics: the walls carry the drive's torque (the top node turns, damped, towards rest)
+    CHECK(r.friction_force[0] == Approx(p.torque_limit).epsilon(1e-6));
+    // break-away events happened above, and each was a contact's own
+    CHECK_FALSE(r.events.empty());
+    for (const Event& e : r.events)
+        CHECK((e.name.rfind("node_", 0) == 0 || e.name.rfind("top_drive.", 0) == 0));
+}
+
+namespace {
+
+/// The analytic Jacobian (jacobian_entries, summed into a dense matrix) against central differences of the
+/// right-hand side in the same mode, over the state rows (the work integrals' rows are left out by design);
+/// every entry written lies inside jacobian_bandwidths().
+template <class Rig>
+void check_jacobian(const Rig& rig, const std::vector<double>& x, const ContactModes& mode) {
+    const std::size_t n = rig.state_size(), rows = rig.work_offset();
+    const Bandwidths band = rig.jacobian_bandwidths();
+    std::vector<double> analytic(n * n, 0.0);
+    bool inside = true;
+    rig.jacobian_entries(0.3, x.data(), mode, [&](std::size_t i, std::size_t j, double v) {
+        inside = inside && (i <= j + band.lower) && (j <= i + band.upper);
+        analytic[j * n + i] += v;
+    });
+    CHECK(inside);
+    std::vector<double> up(n), down(n), xp = x, xm = x;
+    double worst = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+        const double h = 1e-7 * std::max(1.0, std::abs(x[j]));
+        xp[j] = x[j] + h;
+        xm[j] = x[j] - h;
+        rig.rhs(0.3, xp.data(), mode, up.data());
+        rig.rhs(0.3, xm.data(), mode, down.data());
+        xp[j] = xm[j] = x[j];
+        for (std::size_t i = 0; i < rows; ++i) {
+            const double fd = (up[i] - down[i]) / (2.0 * h);
+            worst = std::max(worst, std::abs(fd - analytic[j * n + i]) / std::max(1.0, std::abs(fd)));
+        }
+    }
+    CHECK(worst < 1e-5);
+}
+
+/// A state with every node moving (and a law state of moderate size), so each contact has a definite mode.
+template <class Rig>
+std::vector<double> moving_state(const Rig& rig, bool axial) {
+    std::vector<double> x = rig.initial_state();
+    for (std::size_t i = 0; i <= rig.elements(); ++i) {
+        const double s = static_cast<double>(i);
+        x[rig.theta(i)] = 0.01 * std::sin(s);
+        x[rig.omega(i)] = 1.0 + 0.3 * std::cos(1.7 * s);
+        if (axial) {
+            x[rig.position(i)] = 1e-3 * std::cos(s);
+            x[rig.speed(i)] = 0.05 + 0.02 * std::sin(2.3 * s);
+        }
+    }
+    x[0] = 0.1;
+    return x;
+}
+
+}  // namespace
+
+TEST_CASE("string rig: the analytic banded Jacobian matches difference quotients", "[string_rig]") {
+    StringRigParams p;
+    p.inclination = 1.0;
+    p.damping_time = 0.01;
+    StringRigSetup s;
+    s.elements = 6;
+    const DrillString string = pipe_string(600.0);
+    SECTION("torsion, Stribeck walls in slip, the bit in slip") {
+        const StringRig<Stribeck, VelocityWeakeningBit> rig(string, p, s, Stribeck({0.2, 0.3, 0.05, 2.0, 10.0, 0.0}));
+        const std::vector<double> x = moving_state(rig, false);
+        check_jacobian(rig, x, rig.initial_mode(0.3, x.data()));
+    }
+    SECTION("torsion, Coulomb walls stuck where the state is at rest") {
+        const StringRig<Coulomb, VelocityWeakeningBit> rig(string, p, s, Coulomb(0.3, 0.4));
+        std::vector<double> x = moving_state(rig, false);
+        for (std::size_t i = 2; i <= 4; ++i) x[rig.omega(i)] = 0.0;
+        const ContactModes mode = rig.initial_mode(0.3, x.data());
+        CHECK(rig.mode_code(mode) >= 1);
+        check_jacobian(rig, x, mode);
+    }
+    SECTION("torsion, Dahl walls (a state per contact), prescribed surface speed") {
+        s.top_drive = TopDrive::prescribed_speed;
+        const StringRig<Dahl> rig(string, p, s, Dahl(0.3, 2e4));
+        std::vector<double> x = moving_state(rig, false);
+        for (std::size_t i = 1; i <= 6; ++i) x[rig.law_state(i)] = 1e-3 * static_cast<double>(i);
+        check_jacobian(rig, x, rig.initial_mode(0.3, x.data()));
+    }
+    SECTION("axial and torsion, Coulomb walls sliding along the resultant, hook speed held") {
+        s.axial = true;
+        const StringRig<Coulomb, VelocityWeakeningBit> rig(string, p, s, Coulomb(0.3));
+        const std::vector<double> x = moving_state(rig, true);
+        check_jacobian(rig, x, rig.initial_mode(0.3, x.data()));
+    }
+    SECTION("axial and torsion, LuGre walls, hook load") {
+        s.axial = true;
+        s.hoisting = Hoisting::hook_load;
+        p.hook_load = 1e5;
+        const StringRig<LuGre> rig(string, p, s, LuGre(LuGre::Params{}));
+        std::vector<double> x = moving_state(rig, true);
+        for (std::size_t i = 1; i <= 6; ++i) x[rig.law_state(i)] = 1e-6 * static_cast<double>(i);
+        check_jacobian(rig, x, rig.initial_mode(0.3, x.data()));
+    }
+}
+
+TEST_CASE("string rig: Dormand-Prince and CVODE BDF (dense and band) give the same stick-slip run",
+          "[string_rig]") {
+    const auto rig = stick_slip_rig(8);
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-10;
+    o.output_times = grid(12.0, 0.25);
+    o.method = Method::dormand_prince;
+    const Result dp = simulate(rig, 12.0, o);
+    o.method = Method::cvode_bdf;
+    o.linear_solver = LinearSolver::dense;
+    const Result dense = simulate(rig, 12.0, o);
+    o.linear_solver = LinearSolver::band;
+    const Result band = simulate(rig, 12.0, o);
+    REQUIRE((dp.completed && dense.completed && band.completed));
+    CHECK(dp.events.size() >= 10);
+    for (const Result* other : {&dense, &band}) {
+        REQUIRE(other->events.size() == dp.events.size());
+        for (std::size_t k = 0; k < dp.events.size(); ++k) {
+            CHECK(other->events[k].time == Approx(dp.events[k].time).margin(1e-5));
+            CHECK(other->events[k].name == dp.events[k].name);
+        }
+        for (std::size_t row = 0; row < dp.rows(); ++row)
+            for (std::size_t i : {rig.omega(0), rig.omega(4), rig.omega(8)})
+                CHECK(other->state(row, i) == Approx(dp.state(row, i)).margin(1e-4));
+    }
+}
+
+namespace {
+
+/// drive_work = kinetic + elastic change + wall friction + damping + bit work at every output row (torsion).
+template <class Rig>
+void check_torsional_balance(const Rig& rig, const Result& r) {
+    const std::size_t w = rig.work_offset(), n = r.state_count();
+    const double* x0 = &r.states[0];
+    for (std::size_t row = 1; row < r.rows(); ++row) {
+        const double* x = &r.states[row * n];
+        const double stored = rig.kinetic_energy(x) + rig.elastic_energy(x) - rig.kinetic_energy(x0) -
+                              rig.elastic_energy(x0);
+        const double lost = x[w + Rig::wall_friction_work] + x[w + Rig::damping_work] + x[w + Rig::bit_work];
+        CHECK(x[w + Rig::drive_work] == Approx(stored + lost).epsilon(1e-6));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("string rig: energy balance with state laws at the wall (Dahl's kinks located, LuGre smooth)",
+          "[string_rig]") {
+    SolverOptions o;
+    o.rtol = 1e-9;
+    o.atol = 1e-10;
+    o.output_times = grid(10.0, 0.5);
+    SECTION("Dahl: each contact's velocity reversals are its own events") {
+        const auto rig = stick_slip_rig(8, Dahl(0.25, 1e6));
+        const Result r = simulate(rig, 10.0, o);
+        REQUIRE(r.completed);
+        check_torsional_balance(rig, r);
+        std::size_t reversals = 0;
+        for (const Event& e : r.events)
+            if (e.name.rfind("node_", 0) == 0) {
+                ++reversals;
+                CHECK(e.name.find("relative_velocity") != std::string::npos);
+                CHECK(e.mode_before == -e.mode_after);  // slip_positive <-> slip_negative
+            }
+        CHECK(reversals >= 4);
+    }
+    SECTION("LuGre (stiff: CVODE BDF on the band)") {
+        LuGre::Params l;
+        l.coulomb_coefficient = 0.2;
+        l.static_coefficient = 0.3;
+        l.stribeck_velocity = 0.01;
+        l.bristle_stiffness = 1e6;
+        l.bristle_damping = 1e3;
+        const auto rig = stick_slip_rig(8, LuGre(l));
+        o.method = Method::cvode_bdf;
+        const Result r = simulate(rig, 10.0, o);
+        REQUIRE(r.completed);
+        check_torsional_balance(rig, r);
+    }
+}
+
+TEST_CASE("string rig: energy balance with axial motion, hook load, an agitator and planar stick-slip",
+          "[string_rig]") {
+    // torsion and axial motion: Coulomb walls act against the resultant sliding velocity and stick in the plane;
+    // gravity, the hook load and an axial excitation at node 4 do work too
+    StringRigParams p;
+    p.inclination = pi / 3.0;
+    p.damping_time = 5e-3;
+    p.surface_speed = 0.2;
+    p.top_drive_inertia = 300.0;
+    p.proportional_gain = 3e3;
+    p.integral_gain = 1e3;
+    p.excitation_amplitude = 6e4;
+    p.excitation_frequency = 3.0;
+    p.end_mass = 5e3;
+    StringRigSetup s;
+    s.elements = 8;
+    s.axial = true;
+    s.hoisting = Hoisting::hook_load;
+    s.excitation_node = 4;
+    VelocityWeakeningBit::Params b;
+    b.weight_on_bit = 2e4;
+    p.hook_load = 1e5;  // a little below the along-hole buoyed weight (1.1e5 N): the agitator makes it creep
+    const StringRig<Coulomb, VelocityWeakeningBit> rig(pipe_string(800.0), p, s, Coulomb(0.2, 0.3),
+                                                       VelocityWeakeningBit(b));
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-10;
+    o.output_times = grid(8.0, 0.5);
+    const Result r = simulate(rig, 8.0, o);
+    REQUIRE(r.completed);
+    std::size_t planar_sticks = 0;
+    for (const Event& e : r.events) planar_sticks += e.mode_after_name == "stick";
+    CHECK(planar_sticks >= 20);
+    using Rig = StringRig<Coulomb, VelocityWeakeningBit>;
+    const std::size_t w = rig.work_offset(), n = r.state_count();
+    const double* x0 = &r.states[0];
+    const auto stored = [&](const double* x) {
+        return rig.kinetic_energy(x) + rig.elastic_energy(x) + rig.gravity_potential(x);
+    };
+    for (std::size_t row = 1; row < r.rows(); ++row) {
+        const double* x = &r.states[row * n];
+        const double in = x[w + Rig::drive_work] + x[w + Rig::hoist_work] + x[w + Rig::excitation_work];
+        const double out = stored(x) - stored(x0) + x[w + Rig::wall_friction_work] + x[w + Rig::damping_work] +
+                           x[w + Rig::bit_work];
+        CHECK(in == Approx(out).margin(1e-7 * (std::abs(x[w + Rig::wall_friction_work]) + 1.0)));
+    }
+    const double* x = &r.states[(r.rows() - 1) * n];
+    CHECK(x[w + Rig::excitation_work] != 0.0);
+    CHECK(x[w + Rig::hoist_work] != 0.0);
+}
