@@ -1,0 +1,457 @@
+// A torsional drill string with distributed Coulomb stiction along the wellbore, a PI top drive and the bit off
+// bottom: the model of Aarsnes and Shor (2018, J. Pet. Sci. Eng. 163, 712-721; "A&S" below), on the lumped string of
+// drillstring/sections.hpp and stepped by Moreau-Jean (solve/moreau_jean.hpp).
+//   string:    node inertias and element springs from DrillString::lump(N); viscous damping k_t rho J omega per
+//              unit length (A&S eq 3), i.e. k_t times each node's string inertia;
+//   wall:      at each node a Coulomb contact, static torque bound = the integral over the node's half elements of
+//              F_c(x) = mu sin(inc(x)) w(x) r_o(x) (A&S eq 6; w the buoyed weight per length, g rho A (1 - rho_mud
+//              / rho), r_o the contact radius), kinetic = f_rat times it; A&S eq 4 keeps the static level while
+//              |omega| < omega_c (stick_band_speed; their code: 1.5 rad/s), and stick is true stick (omega = 0);
+//   top drive: node 0 carries I_TD, driven by tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10);
+//              continuous, that is a damper k_p and a spring k_i to the set-point angle (the top row of C and K),
+//              or sampled with a zero-order hold (A&S's MAIN.m: every 0.01 s);
+//   bit:       off bottom: node N carries an optional BHA inertia and a constant bit torque (0 off bottom).
+// The closed forms of A&S sec. 4 come with it: break-off torque (eq 27), minimum torque (eq 30), the twist at the
+// top drive (eq 29 at x = 0), build-up time (eq 34) and period estimate (eq 40) with the string's fundamental
+// period (the continuous string's lowest mode, top held, by transfer matrices).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "../detail/constants.hpp"
+#include "../parameters.hpp"
+#include "../solve/moreau_jean.hpp"
+#include "sections.hpp"
+
+namespace frictionsim {
+
+struct TorsionalStringParams {
+    double top_drive_inertia = 2900.0;           ///< I_TD, kg m^2 (A&S Well B)
+    double proportional_gain = 38e3;             ///< k_p, N m s/rad
+    double integral_gain = 100e3;                ///< k_i, N m/rad
+    double speed_setpoint = 40.0 * pi / 30.0;    ///< omega_SP, rad/s (40 rpm)
+    double setpoint_time_constant = 1.0;         ///< s: omega_SP ramps from rest as 1 - exp(-t / T); 0: a step
+    double control_period = 0.0;                 ///< s: 0 continuous PI; > 0 sampled, zero-order hold
+    double friction_coefficient = 0.3;           ///< mu, static (A&S: the static friction factor)
+    double kinetic_ratio = 0.65;                 ///< f_rat = kinetic / static
+    double stick_band_speed = 0.0;               ///< omega_c, rad/s: below it a slipping node keeps the static level
+    double inclination = 60.0 * pi / 180.0;      ///< rad, of a straight inclined well (when no survey is given)
+    double mud_density = 0.0;                    ///< kg/m^3: buoyancy; 0 the dry weight, as A&S's code
+    double damping_rate = 0.0;                   ///< k_t, 1/s: damping torque k_t rho J omega per unit length
+    double bha_inertia = 0.0;                    ///< kg m^2 lumped on the bit node, beyond the sections'
+    double bit_torque = 0.0;                     ///< N m against the rotation at the bit; off bottom 0
+    double gravity = 9.81;                       ///< m/s^2
+
+    static constexpr std::array<Field<TorsionalStringParams>, 15> fields();
+};
+
+inline constexpr std::array<Field<TorsionalStringParams>, 15> TorsionalStringParams::fields() {
+    using P = TorsionalStringParams;
+    return {{
+        {"top_drive_inertia", "I_TD", "kg m^2", Rule::positive(), &P::top_drive_inertia, "Top drive inertia."},
+        {"proportional_gain", "k_p", "N m s/rad", Rule::non_negative(), &P::proportional_gain, "PI proportional gain."},
+        {"integral_gain", "k_i", "N m/rad", Rule::non_negative(), &P::integral_gain, "PI integral gain."},
+        {"speed_setpoint", "omega_SP", "rad/s", Rule::finite(), &P::speed_setpoint, "Top drive speed set-point."},
+        {"setpoint_time_constant", "T_SP", "s", Rule::non_negative(), &P::setpoint_time_constant,
+         "Time constant of the set-point's ramp from rest; 0: a step."},
+        {"control_period", "T_c", "s", Rule::non_negative(), &P::control_period,
+         "Sampling period of the PI (zero-order hold); 0: continuous."},
+        {"friction_coefficient", "mu", "-", Rule::non_negative(), &P::friction_coefficient,
+         "Static wall friction coefficient."},
+        {"kinetic_ratio", "f_rat", "-", Rule::interval(0.0, 1.0).because("kinetic friction <= static"),
+         &P::kinetic_ratio, "Kinetic over static friction."},
+        {"stick_band_speed", "omega_c", "rad/s", Rule::non_negative(), &P::stick_band_speed,
+         "A&S eq 4: below it the friction keeps the static level; 0: kinetic as soon as it slips."},
+        {"inclination", "INC", "rad", Rule::interval(0.0, pi), &P::inclination,
+         "Inclination of a straight well (ignored when a survey is given)."},
+        {"mud_density", "rho_mud", "kg/m^3", Rule::non_negative(), &P::mud_density, "Mud density (buoyancy)."},
+        {"damping_rate", "k_t", "1/s", Rule::non_negative(), &P::damping_rate,
+         "Viscous damping: torque k_t rho J omega per unit length."},
+        {"bha_inertia", "J_BHA", "kg m^2", Rule::non_negative(), &P::bha_inertia, "Inertia lumped on the bit."},
+        {"bit_torque", "T_b", "N m", Rule::non_negative(), &P::bit_torque, "Torque on bit; off bottom 0."},
+        {"gravity", "g", "m/s^2", Rule::positive(), &P::gravity, "Acceleration of gravity."},
+    }};
+}
+
+/// Inclination [rad] against measured depth [m], linear in between and constant beyond the ends.
+struct InclinationSurvey {
+    std::vector<double> measured_depth, inclination;
+
+    bool empty() const { return measured_depth.empty(); }
+    double at(double md) const {
+        if (md <= measured_depth.front()) return inclination.front();
+        if (md >= measured_depth.back()) return inclination.back();
+        const std::size_t i = static_cast<std::size_t>(
+            std::upper_bound(measured_depth.begin(), measured_depth.end(), md) - measured_depth.begin());
+        const double a = (md - measured_depth[i - 1]) / (measured_depth[i] - measured_depth[i - 1]);
+        return inclination[i - 1] + a * (inclination[i] - inclination[i - 1]);
+    }
+};
+
+/// What a run records every output interval.
+struct TorsionalStringRun {
+    std::vector<double> time;             ///< s
+    std::vector<double> bit_speed;        ///< rad/s, node N
+    std::vector<double> top_drive_speed;  ///< rad/s, node 0
+    std::vector<double> motor_torque;     ///< N m, tau_m
+    std::vector<double> stuck_fraction;   ///< nodes at rest (v == 0 exactly; or |v| < slow_speed if set)
+    MoreauJean::Statistics statistics;
+};
+
+struct TorsionalStringRunOptions {
+    double t_end = 60.0;
+    double step = 1e-3;            ///< h, s; the output interval and a sampled PI's period are multiples of it
+    double theta = 0.5;
+    double output_interval = 0.01;
+    double slow_speed = 0.0;       ///< > 0: count |omega| < slow_speed as stuck (A&S's stick band, 1.5 rad/s)
+    ContactTreatment treatment = ContactTreatment::inclusion;
+    double projection_band = 0.0;
+    std::function<bool()> interrupt;
+};
+
+class TorsionalString {
+public:
+    /// `contact_radius`: one per section (m), empty: each section's OD / 2. `survey`: empty: params.inclination.
+    TorsionalString(DrillString string, TorsionalStringParams params, std::size_t elements,
+                    InclinationSurvey survey = {}, std::vector<double> contact_radius = {})
+        : string_(std::move(string)), p_(params), survey_(std::move(survey)), radius_(std::move(contact_radius)) {
+        validate_fields("TorsionalString", p_, TorsionalStringParams::fields());
+        const auto& sections = string_.sections();
+        if (radius_.empty())
+            for (const PipeSection& s : sections) radius_.push_back(s.outer_diameter / 2.0);
+        if (radius_.size() != sections.size())
+            detail::reject("TorsionalString", "contact_radius", "one per section (count given)",
+                           static_cast<double>(radius_.size()));
+        for (double r : radius_) detail::require_positive("TorsionalString", "contact_radius", r);
+        if (!survey_.empty()) {
+            if (survey_.inclination.size() != survey_.measured_depth.size())
+                detail::reject("TorsionalString", "survey.inclination", "one per survey.measured_depth (count given)",
+                               static_cast<double>(survey_.inclination.size()));
+            for (std::size_t i = 0; i < survey_.measured_depth.size(); ++i) {
+                detail::require_finite("TorsionalString", "survey.measured_depth", survey_.measured_depth[i]);
+                if (i > 0 && !(survey_.measured_depth[i] > survey_.measured_depth[i - 1]))
+                    detail::reject("TorsionalString", "survey.measured_depth", "strictly increasing",
+                                   survey_.measured_depth[i]);
+                if (!(survey_.inclination[i] >= 0.0 && survey_.inclination[i] <= pi))
+                    detail::reject("TorsionalString", "survey.inclination", "in [0, pi] rad", survey_.inclination[i]);
+            }
+        }
+        lumped_ = string_.lump(elements);
+        const std::size_t n = elements;
+        const double dx = lumped_.element_length;
+        static_torque_.assign(n + 1, 0.0);
+        for (std::size_t e = 0; e < n; ++e) {  // each element's friction, half to each of its nodes
+            const double half = 0.5 * friction_integral(static_cast<double>(e) * dx, static_cast<double>(e + 1) * dx);
+            static_torque_[e] += half;
+            static_torque_[e + 1] += half;
+        }
+    }
+
+    const TorsionalStringParams& params() const { return p_; }
+    const DrillString& string() const { return string_; }
+    const LumpedString& lumped() const { return lumped_; }
+    std::size_t nodes() const { return lumped_.node_inertia.size(); }
+    /// Static torque bound of each node's wall contact [N m] (kinetic: kinetic_ratio times it).
+    const std::vector<double>& static_friction_torque() const { return static_torque_; }
+
+    /// F_c(x) of A&S eq 6 [N m/m]: mu sin(inc) g rho A (1 - rho_mud / rho) r_o at measured depth x.
+    double wall_friction_per_length(double x) const {
+        const auto [s, i] = section_at(x);
+        const double inc = survey_.empty() ? p_.inclination : survey_.at(x);
+        const double buoyed = p_.gravity * s->mass_per_length() * (1.0 - p_.mud_density / s->density);
+        return p_.friction_coefficient * std::sin(inc) * buoyed * radius_[i];
+    }
+
+    /// A&S eq 27: the break-off torque, int_0^L F_c dx (the torque the top drive must reach to free the bit).
+    double breakoff_torque() const { return friction_integral(0.0, string_.length()); }
+    /// A&S eq 30: the minimum motor torque of a stick-slip cycle, tau_max (1 - 2 (1 - f_rat)).
+    double minimum_torque() const { return breakoff_torque() * (1.0 - 2.0 * (1.0 - p_.kinetic_ratio)); }
+    /// A&S eq 29 at the top drive: phi(0) = int_0^L tau(x) / (J G)(x) dx, tau(x) = int_x^L F_c (eq 26), the
+    /// string's twist when it holds the break-off torque profile (Simpson, 500 pieces per section).
+    double top_drive_twist() const {
+        const auto& sections = string_.sections();
+        double twist = 0.0, bottom = string_.length(), torque = 0.0;  // tau(L) = 0: the bit is off bottom
+        for (std::size_t i = sections.size(); i-- > 0;) {  // upwards, tau accumulated piece by piece
+            const PipeSection& s = sections[i];
+            const int pieces = 500;
+            const double dx = s.length / pieces;
+            for (int k = pieces; k-- > 0;) {
+                const double a = bottom - s.length + k * dx, m = a + 0.5 * dx, b = a + dx;
+                const double at_m = torque + friction_integral(m, b), at_a = at_m + friction_integral(a, m);
+                twist += dx / 6.0 * (at_a + 4.0 * at_m + torque) / s.torsional_rigidity();
+                torque = at_a;
+            }
+            bottom -= s.length;
+        }
+        return twist;
+    }
+    /// A&S eq 34: build-up time 2 (1 - f_rat) phi(0) / omega_TD.
+    double build_up_time() const { return 2.0 * (1.0 - p_.kinetic_ratio) * top_drive_twist() / p_.speed_setpoint; }
+    /// The continuous string's fundamental torsional period [s], top held (a stiff top drive), bit free with the
+    /// BHA inertia: first root of the transfer-matrix frequency equation over the sections.
+    double fundamental_period() const {
+        const auto residual = [&](double w) {  // state (twist, torque) from the top: (0, 1)
+            double angle = 0.0, torque = 1.0;
+            for (const PipeSection& s : string_.sections()) {
+                const double k = w * std::sqrt(s.density / s.shear_modulus), gj = s.torsional_rigidity();
+                const double c = std::cos(k * s.length), sn = std::sin(k * s.length);
+                const double a = angle * c + torque * sn / (gj * k);
+                torque = -gj * k * angle * sn + torque * c;
+                angle = a;
+            }
+            return torque - w * w * p_.bha_inertia * angle;  // the end inertia's torque balance
+        };
+        double lo = 1e-6, hi = lo, r_lo = residual(lo);
+        for (hi = 2.0 * lo; residual(hi) * r_lo > 0.0; hi *= 1.01) lo = hi;
+        for (int i = 0; i < 200; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (residual(mid) * r_lo > 0.0 ? lo : hi) = mid;
+        }
+        return 2.0 * pi / (0.5 * (lo + hi));
+    }
+    /// A&S eq 40: t_p = t_bu + t_fp (A&S: "slightly" above the observed period).
+    double period_estimate() const { return build_up_time() + fundamental_period(); }
+
+    /// The set-point omega_SP(t) and its angle int_0^t omega_SP (continuous ramp).
+    double setpoint_speed(double t) const {
+        const double T = p_.setpoint_time_constant;
+        return T > 0.0 ? p_.speed_setpoint * (1.0 - std::exp(-t / T)) : p_.speed_setpoint;
+    }
+    double setpoint_angle(double t) const {
+        const double T = p_.setpoint_time_constant;
+        return T > 0.0 ? p_.speed_setpoint * (t - T * (1.0 - std::exp(-t / T))) : p_.speed_setpoint * t;
+    }
+
+    /// M v' = f(t) - C v - K q + r over the N + 1 node angles, the wall contacts on the nodes with friction. With a
+    /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0; sampled, f_0 reads `held_motor_torque`.
+    LinearMechanicalSystem system(const double* held_motor_torque = nullptr) const {
+        const Eigen::Index n = static_cast<Eigen::Index>(nodes());
+        std::vector<Eigen::Triplet<double>> m, c, k;
+        for (Eigen::Index i = 0; i < n; ++i) {
+            const double j = lumped_.node_inertia[static_cast<std::size_t>(i)];
+            m.emplace_back(i, i, j + (i == 0 ? p_.top_drive_inertia : 0.0) + (i == n - 1 ? p_.bha_inertia : 0.0));
+            if (p_.damping_rate > 0.0) c.emplace_back(i, i, p_.damping_rate * j);
+        }
+        for (Eigen::Index e = 0; e + 1 < n; ++e) {
+            const double ke = lumped_.torsional_stiffness[static_cast<std::size_t>(e)];
+            k.emplace_back(e, e, ke);
+            k.emplace_back(e + 1, e + 1, ke);
+            k.emplace_back(e, e + 1, -ke);
+            k.emplace_back(e + 1, e, -ke);
+        }
+        const bool sampled = held_motor_torque != nullptr;
+        if (!sampled) {
+            c.emplace_back(0, 0, p_.proportional_gain);
+            k.emplace_back(0, 0, p_.integral_gain);
+        }
+        LinearMechanicalSystem sys;
+        sys.mass.resize(n, n);
+        sys.damping.resize(n, n);
+        sys.stiffness.resize(n, n);
+        sys.mass.setFromTriplets(m.begin(), m.end());
+        sys.damping.setFromTriplets(c.begin(), c.end());
+        sys.stiffness.setFromTriplets(k.begin(), k.end());
+        const TorsionalString self = *this;
+        const double bit = p_.bit_torque;
+        if (sampled)
+            sys.force = [held_motor_torque, bit](double, Eigen::VectorXd& f) {
+                f(0) = *held_motor_torque;
+                f(f.size() - 1) = -bit;
+            };
+        else
+            sys.force = [self, bit](double t, Eigen::VectorXd& f) {
+                const TorsionalStringParams& p = self.p_;
+                f(0) = p.proportional_gain * self.setpoint_speed(t) + p.integral_gain * self.setpoint_angle(t);
+                f(f.size() - 1) = -bit;
+            };
+        for (std::size_t i = 0; i < nodes(); ++i)
+            if (static_torque_[i] > 0.0)
+                sys.contacts.push_back(PointContact{i, static_torque_[i], p_.kinetic_ratio * static_torque_[i],
+                                                    static_torque_[i], p_.stick_band_speed});
+        return sys;
+    }
+
+    /// From rest, untwisted, all contacts stuck.
+    TorsionalStringRun simulate(const TorsionalStringRunOptions& run) const {
+        constexpr const char* who = "TorsionalStringRunOptions";
+        detail::require_positive(who, "t_end", run.t_end);
+        detail::require_positive(who, "step", run.step);
+        detail::require_non_negative(who, "slow_speed", run.slow_speed);
+        const long per_output = steps_per(who, "output_interval", run.output_interval, run.step);
+        const bool sampled = p_.control_period > 0.0;
+        const long per_control =
+            sampled ? steps_per("TorsionalString", "control_period", p_.control_period, run.step) : 0;
+
+        MoreauJeanOptions o;
+        o.step = run.step;
+        o.theta = run.theta;
+        o.treatment = run.treatment;
+        o.projection_band = run.projection_band;
+        o.record_events = false;  // hundreds of contacts: the run keeps the count (statistics), not the log
+        o.interrupt = run.interrupt;
+        double held = 0.0, setpoint = 0.0, integral = 0.0;
+        const Eigen::Index n = static_cast<Eigen::Index>(nodes());
+        MoreauJean mj(system(sampled ? &held : nullptr), o, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
+
+        TorsionalStringRun out;
+        const long total = std::lround(run.t_end / run.step);
+        for (long k = 0;; ++k) {
+            const double t = mj.time();
+            const Eigen::VectorXd& v = mj.velocities();
+            if (sampled && k % per_control == 0) {  // A&S MAIN.m: the set-point filter, then tau_m, then int e
+                const double dt = p_.control_period, T = p_.setpoint_time_constant;
+                setpoint = T > 0.0 ? setpoint + (p_.speed_setpoint - setpoint) * dt / T : p_.speed_setpoint;
+                held = p_.proportional_gain * (setpoint - v(0)) + p_.integral_gain * integral;
+                integral += dt * (setpoint - v(0));
+            }
+            if (k % per_output == 0) {
+                out.time.push_back(t);
+                out.bit_speed.push_back(v(n - 1));
+                out.top_drive_speed.push_back(v(0));
+                out.motor_torque.push_back(sampled ? held
+                                                   : p_.proportional_gain * (setpoint_speed(t) - v(0)) +
+                                                         p_.integral_gain * (setpoint_angle(t) - mj.positions()(0)));
+                Eigen::Index stuck = 0;
+                for (Eigen::Index i = 0; i < n; ++i)
+                    stuck += (run.slow_speed > 0.0 ? std::abs(v(i)) < run.slow_speed : v(i) == 0.0) ? 1 : 0;
+                out.stuck_fraction.push_back(static_cast<double>(stuck) / static_cast<double>(n));
+            }
+            if (k == total) break;
+            mj.step();
+        }
+        out.statistics = mj.statistics();
+        return out;
+    }
+
+private:
+    static long steps_per(const char* who, const char* name, double interval, double step) {
+        detail::require_positive(who, name, interval);
+        const double ratio = interval / step;
+        const long steps = std::lround(ratio);
+        if (steps < 1 || std::abs(ratio - static_cast<double>(steps)) > 1e-9 * ratio)
+            detail::reject(who, name, "a whole multiple of the step", interval);
+        return steps;
+    }
+
+    /// The section holding measured depth x (the lower one at a boundary) and its index.
+    std::pair<const PipeSection*, std::size_t> section_at(double x) const {
+        const auto& sections = string_.sections();
+        double top = 0.0;
+        for (std::size_t i = 0; i < sections.size(); ++i) {
+            top += sections[i].length;
+            if (x < top) return {&sections[i], i};
+        }
+        return {&sections.back(), sections.size() - 1};
+    }
+
+    /// int_a^b F_c dx: 3-point Gauss on pieces of at most 10 m, split at section and survey stations (F_c is smooth
+    /// in between), so the node bounds sum to the break-off torque independently of the grid.
+    double friction_integral(double a, double b) const {
+        std::vector<double> cuts{a, b};
+        double top = 0.0;
+        for (const PipeSection& s : string_.sections()) {
+            top += s.length;
+            if (top > a && top < b) cuts.push_back(top);
+        }
+        for (double md : survey_.measured_depth)
+            if (md > a && md < b) cuts.push_back(md);
+        std::sort(cuts.begin(), cuts.end());
+        const double g = std::sqrt(0.6);
+        double sum = 0.0;
+        for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+            const int pieces = std::max(1, static_cast<int>(std::ceil((cuts[i + 1] - cuts[i]) / 10.0)));
+            const double dx = (cuts[i + 1] - cuts[i]) / pieces;
+            for (int k = 0; k < pieces; ++k) {
+                const double m = cuts[i] + (k + 0.5) * dx, r = 0.5 * dx;
+                sum += r * (5.0 / 9.0 * wall_friction_per_length(m - g * r) + 8.0 / 9.0 * wall_friction_per_length(m) +
+                            5.0 / 9.0 * wall_friction_per_length(m + g * r));
+            }
+        }
+        return sum;
+    }
+
+    DrillString string_;
+    TorsionalStringParams p_;
+    InclinationSurvey survey_;
+    std::vector<double> radius_;
+    LumpedString lumped_;
+    std::vector<double> static_torque_;
+};
+
+/// The collar polar moment of A&S's parameters_WellB.m: its line p.Jc = pi * sum(L pi (OD^4 - ID^4) / 32) / sum(L)
+/// carries an extra factor pi.
+enum class CollarPolarMoment {
+    as_published,  ///< with the extra pi (what the published results were computed with)
+    corrected,     ///< the length-averaged pi (OD^4 - ID^4) / 32 of the four collar sections
+};
+
+/// The collar's torsional wave speed in A&S's torsionalWaveStep.m: it updates the collar's Riemann invariants with the
+/// pipe's c_t = sqrt(G_p / rho), while its torque is J_c G_c times the strain. That is a collar of density
+/// rho G_c / G_p (inertia and weight, hence wall friction, 67/61 = 1.098 times the steel's).
+enum class CollarWaveSpeed {
+    as_code,   ///< sqrt(G_p / rho), what the published results were computed with
+    physical,  ///< sqrt(G_c / rho)
+};
+
+/// A&S's Well B (parameters_WellB.m, MAIN.m: mu 0.3, f_rat 0.65, 40 rpm) at measured depth `md`: 5.77" pipe and a
+/// 230 m BHA averaged over its four sections (the tube with that area and polar moment; contact radius the averaged
+/// OD / 2), G 61 / 67 GPa, rho 7850, I_TD 2900, k_p 38e3, k_i 100e3, the survey 0 / 0 / 60 / 60 deg at
+/// 0 / 500 / 1600 / 4000 m, omega_c 1.5 rad/s, the code's PI sampled every 0.01 s, and its damping at its 1000-cell
+/// grid: torsionalWaveStep.m multiplies k_t (alpha + beta) by its sub-step twice, so A&S eq 3's k_t = 50 acts as
+/// 2 k_t dt_sub = 2 * 50 * 0.01 / 12 = 0.0833 1/s there (`damping_rate`). The side-by-side comparison uses
+/// (as_published, as_code); a physically consistent Well B is (corrected, physical).
+struct WellBCase {
+    DrillString string;
+    TorsionalStringParams params;
+    InclinationSurvey survey;
+    std::vector<double> contact_radius;
+};
+
+inline WellBCase aarsnes_shor_well_b(CollarPolarMoment collar, CollarWaveSpeed wave_speed, double md = 2500.0) {
+    const double lengths[4] = {48.700, 114.800, 56.700, 38.880};
+    const double od[4] = {0.150473, 0.187322, 0.209550, 0.247280};
+    const double id[4] = {0.096207, 0.098912, 0.071438, 0.123391};
+    double total = 0.0, area = 0.0, polar = 0.0, radius = 0.0;
+    for (int i = 0; i < 4; ++i) {
+        total += lengths[i];
+        area += lengths[i] * pi / 4.0 * (od[i] * od[i] - id[i] * id[i]);
+        polar += lengths[i] * pi / 32.0 * (std::pow(od[i], 4) - std::pow(id[i], 4));
+        radius += lengths[i] * od[i] / 2.0;
+    }
+    area /= total;
+    polar /= total;
+    radius /= total;
+    if (collar == CollarPolarMoment::as_published) polar *= pi;
+    // the tube with that area and polar moment: OD^2 - ID^2 = 4 A / pi, OD^2 + ID^2 = 8 J / A
+    const double diff = 4.0 * area / pi, sum = 8.0 * polar / area;
+    PipeSection pipe{}, bha{};
+    pipe.outer_diameter = 0.146529;
+    pipe.inner_diameter = 0.123024;
+    pipe.shear_modulus = 61e9;
+    pipe.density = 7850.0;
+    pipe.length = md - 230.0;
+    bha.outer_diameter = std::sqrt(0.5 * (sum + diff));
+    bha.inner_diameter = std::sqrt(std::max(0.0, 0.5 * (sum - diff)));
+    bha.shear_modulus = 67e9;
+    bha.density = wave_speed == CollarWaveSpeed::as_code ? 7850.0 * 67.0 / 61.0 : 7850.0;
+    bha.length = 230.0;
+    TorsionalStringParams p;
+    p.control_period = 0.01;
+    p.stick_band_speed = 1.5;
+    p.damping_rate = 2.0 * 50.0 * 0.01 / 12.0;
+    WellBCase out{DrillString({pipe, bha}), p, InclinationSurvey{}, {pipe.outer_diameter / 2.0, radius}};
+    out.survey.measured_depth = {0.0, 500.0, 1600.0, 4000.0};
+    out.survey.inclination = {0.0, 0.0, 60.0 * pi / 180.0, 60.0 * pi / 180.0};
+    return out;
+}
+
+}  // namespace frictionsim
