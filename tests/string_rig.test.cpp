@@ -73,9 +73,10 @@ StringRig<Law, VelocityWeakeningBit> stick_slip_rig(std::size_t n, Law law = Cou
     p.integral_gain = 1e3;
     StringRigSetup s;
     s.elements = n;
-    VelocityWeakeningBit::Params b;
-    b.weight_on_bit = 6e4;
-    return StringRig<Law, VelocityWeakeningBit>(pipe_string(1000.0), p, s, std::move(law), VelocityWeakeningBit(b));
+    NavarroLopezBit::Params b;
+    b.viscous_damping = 0.0;
+    return StringRig<Law, VelocityWeakeningBit>(pipe_string(1000.0), p, s, std::move(law),
+                                                VelocityWeakeningBit(NavarroLopezBit(b), 6e4));
 }
 
 }  // namespace
@@ -114,9 +115,10 @@ TEST_CASE("string rig: bad set-ups name the parameter", "[string_rig][validation
     CHECK(rejected_parameter([&] {
               (void)StringRig<Coulomb, VelocityWeakeningBit>(string, StringRigParams{}, bit_node, Coulomb(0.3));
           }) == "contact_nodes");
-    VelocityWeakeningBit::Params b;
-    b.kinetic_coefficient = 0.9;  // above mu_sb
-    CHECK(rejected_parameter([&] { (void)VelocityWeakeningBit(b); }) == "static_coefficient");
+    NavarroLopezBit::Params b;
+    b.coulomb_coefficient = 0.9;  // above mu_sb
+    CHECK(rejected_parameter([&] { (void)NavarroLopezBit(b); }) == "static_coefficient");
+    CHECK(rejected_parameter([&] { (void)VelocityWeakeningBit(NavarroLopezBit(), -1.0); }) == "weight_on_bit");
     StringRig<Coulomb> rig(string, StringRigParams{}, StringRigSetup{}, Coulomb(0.3));
     CHECK(rejected_parameter([&] { rig.set_initial_state({1.0}); }) == "initial_state");
 }
@@ -270,7 +272,7 @@ struct TwoInertia {
     void rhs(double, const double* x, int mode, double* dx) const {
         const double s = spring(x);
         const double bit_torque =
-            mode == 0 ? s : bit.params().bit_radius * bit.weight_on_bit() * bit.coefficient(x[4]) * mode;
+            mode == 0 ? s : bit.torque(x[4], bit.weight_on_bit(), mode);
         dx[0] = w_set - x[2];
         dx[1] = x[2];
         dx[2] = (kp * (w_set - x[2]) + ki * x[0] - s) / j0;
@@ -317,9 +319,7 @@ TEST_CASE("string rig: one element is the two-inertia top drive and bit model", 
     StringRigSetup s;
     s.elements = 1;
     s.wall_contacts = false;
-    VelocityWeakeningBit::Params bp;
-    bp.weight_on_bit = 5e4;
-    const VelocityWeakeningBit bit(bp);
+    const VelocityWeakeningBit bit(NavarroLopezBit(), 5e4);  // with the bit's viscous torque c_b w
     const StringRig<Coulomb, VelocityWeakeningBit> rig(string, p, s, Coulomb(0.3), bit);
     const LumpedString& l = rig.lumped();
     const TwoInertia hand{400.0 + l.node_inertia[0], 50.0 + l.node_inertia[1], l.torsional_stiffness[0],
@@ -617,11 +617,11 @@ TEST_CASE("string rig: energy balance with axial motion, hook load, an agitator 
     s.axial = true;
     s.hoisting = Hoisting::hook_load;
     s.excitation_node = 4;
-    VelocityWeakeningBit::Params b;
-    b.weight_on_bit = 2e4;
+    NavarroLopezBit::Params b;
+    b.viscous_damping = 0.0;
     p.hook_load = 1e5;  // a little below the along-hole buoyed weight (1.1e5 N): the agitator makes it creep
     const StringRig<Coulomb, VelocityWeakeningBit> rig(pipe_string(800.0), p, s, Coulomb(0.2, 0.3),
-                                                       VelocityWeakeningBit(b));
+                                                       VelocityWeakeningBit(NavarroLopezBit(b), 2e4));
     SolverOptions o;
     o.rtol = 1e-10;
     o.atol = 1e-10;

@@ -12,10 +12,13 @@
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
+#include <utility>
 
 #include "../detail/traits.hpp"
 #include "../friction/law.hpp"
+#include "../detail/validate.hpp"
 #include "../parameters.hpp"
+#include "bit_rock.hpp"
 
 namespace frictionsim {
 
@@ -32,57 +35,26 @@ struct OffBottom {
     double weight_on_bit() const { return 0.0; }
 };
 
-/// Velocity-weakening bit friction of the lumped stick-slip literature (Navarro-Lopez and Cortes 2007, eq 9):
-///   T_b = R_b W mu_b(w) sgn(w),  mu_b(w) = mu_cb + (mu_sb - mu_cb) exp(-gamma_b |w|),
-/// and a stuck bit (w = 0) holds any torque up to R_b W mu_sb. Defaults: their parameter set.
-class VelocityWeakeningBit {
+/// A bit law on the rock under an imposed weight on bit: any FrictionLaw in (bit speed, weight on bit) -> torque
+/// on bit (NavarroLopezBit of bit_rock.hpp, or a drilling code's own law) and the weight on bit it drills with.
+template <class Law>
+class BitOnRock : public Law {
 public:
-    static constexpr const char* name = "VelocityWeakeningBit";
     static constexpr bool touches_rock = true;
-    static constexpr bool has_stick = true;
-    static constexpr std::size_t state_count = 0;
 
-    struct Params {
-        double bit_radius = 0.155575;     ///< R_b, m
-        double weight_on_bit = 97347.0;   ///< W, N
-        double static_coefficient = 0.8;  ///< mu_sb
-        double kinetic_coefficient = 0.5; ///< mu_cb <= mu_sb
-        double decay = 0.9;               ///< gamma_b, s/rad
-    };
-    static constexpr std::array<Field<Params>, 5> fields{{
-        {"bit_radius", "R_b", "m", Rule::positive(), &Params::bit_radius, "Bit radius."},
-        {"weight_on_bit", "W", "N", Rule::non_negative(), &Params::weight_on_bit, "Weight on bit."},
-        {"static_coefficient", "mu_sb", "-", Rule::at_least_field("kinetic_coefficient"), &Params::static_coefficient,
-         "Static bit friction coefficient (>= mu_cb)."},
-        {"kinetic_coefficient", "mu_cb", "-", Rule::positive(), &Params::kinetic_coefficient,
-         "Kinetic bit friction coefficient (the level at high speed)."},
-        {"decay", "gamma_b", "s/rad", Rule::non_negative(), &Params::decay,
-         "Rate of the velocity weakening, per rad/s of bit speed."},
-    }};
+    BitOnRock() = default;
+    BitOnRock(Law law, double weight_on_bit)
+        : Law(std::move(law)), weight_(detail::require_non_negative("BitOnRock", "weight_on_bit", weight_on_bit)) {}
 
-    explicit VelocityWeakeningBit(const Params& p) : p_(p) { validate_fields(name, p, fields); }
-    VelocityWeakeningBit() : VelocityWeakeningBit(Params{}) {}
-    const Params& params() const { return p_; }
-
-    double weight_on_bit() const { return p_.weight_on_bit; }
-    double static_limit(double weight) const { return p_.bit_radius * weight * p_.static_coefficient; }
-    double slip_force(double w, double weight, int direction) const {
-        return direction * p_.bit_radius * weight * coefficient(w);
-    }
-    /// dT_b/dw in slip.
-    double slip_slope(double w, double weight, int direction) const {
-        return -direction * p_.bit_radius * weight * (p_.static_coefficient - p_.kinetic_coefficient) * p_.decay *
-               std::exp(-p_.decay * std::abs(w)) * sign_of(w);
-    }
-    double karnopp_band() const { return 0.0; }
-    /// mu_b(w).
-    double coefficient(double w) const {
-        return p_.kinetic_coefficient + (p_.static_coefficient - p_.kinetic_coefficient) * std::exp(-p_.decay * std::abs(w));
-    }
+    double weight_on_bit() const { return weight_; }  ///< W, N
+    const Law& law() const { return *this; }
 
 private:
-    Params p_;
+    double weight_ = 0.0;
 };
+
+/// The lumped-model literature's velocity-weakening bit (Navarro-Lopez & Cortes 2007) under a weight on bit.
+using VelocityWeakeningBit = BitOnRock<NavarroLopezBit>;
 
 namespace detail {
 template <class B> using touches_rock_t = decltype(bool{B::touches_rock});
