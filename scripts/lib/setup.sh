@@ -18,7 +18,7 @@ FRICTIONSIM_JOBS="$(nproc 2>/dev/null || echo 2)"
 FRICTIONSIM_VENV="${FRICTIONSIM_VENV:-$FRICTIONSIM_ROOT/.venv}"
 
 # Everything scripts/test and scripts/demo need on Debian bookworm.
-FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ libsundials-dev libeigen3-dev catch2 libbenchmark-dev python3-venv python3-dev valgrind)
+FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ libsundials-dev libsuitesparse-dev libeigen3-dev catch2 libbenchmark-dev python3-venv python3-dev valgrind)
 
 frictionsim_log() { printf '\n==> %s\n' "$*" >&2; }
 
