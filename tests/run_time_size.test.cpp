@@ -201,6 +201,10 @@ TEST_CASE("run-time size: a 40-mass spring chain started in its third mode keeps
         REQUIRE(resolve_linear_solver<SpringChain>(o.linear_solver) == LinearSolver::band);
         check_chain_mode(chain, 2, o, 2e-8);
     }
+    SECTION("Rosenbrock (RODAS4), banded LU with the analytic Jacobian") {
+        o.method = Method::rosenbrock;
+        check_chain_mode(chain, 2, o, 2e-8);
+    }
     SECTION("CVODE BDF, KLU sparse solver on the band pattern") {
         o.method = Method::cvode_bdf;
         o.linear_solver = LinearSolver::sparse;
@@ -253,7 +257,7 @@ TEST_CASE("run-time size: blocks on a belt stick and slip each on its own, at th
     o.rtol = 1e-10;
     o.atol = 1e-13;
     o.output_times = {0.0, 5.0};
-    for (Method method : {Method::dormand_prince, Method::cvode_bdf}) {
+    for (Method method : {Method::dormand_prince, Method::cvode_bdf, Method::rosenbrock}) {
         o.method = method;
         const double t_end = 6.0;
         o.output_times = {0.0, t_end};

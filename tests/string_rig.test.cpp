@@ -517,7 +517,7 @@ TEST_CASE("string rig: the analytic banded Jacobian matches difference quotients
     }
 }
 
-TEST_CASE("string rig: Dormand-Prince and CVODE BDF (dense and band) give the same stick-slip run",
+TEST_CASE("string rig: Dormand-Prince, CVODE BDF (dense and band) and RODAS4 give the same stick-slip run",
           "[string_rig]") {
     const auto rig = stick_slip_rig(8);
     SolverOptions o;
@@ -531,9 +531,11 @@ TEST_CASE("string rig: Dormand-Prince and CVODE BDF (dense and band) give the sa
     const Result dense = simulate(rig, 12.0, o);
     o.linear_solver = LinearSolver::band;
     const Result band = simulate(rig, 12.0, o);
-    REQUIRE((dp.completed && dense.completed && band.completed));
+    o.method = Method::rosenbrock;
+    const Result rodas = simulate(rig, 12.0, o);
+    REQUIRE((dp.completed && dense.completed && band.completed && rodas.completed));
     CHECK(dp.events.size() >= 10);
-    for (const Result* other : {&dense, &band}) {
+    for (const Result* other : {&dense, &band, &rodas}) {
         REQUIRE(other->events.size() == dp.events.size());
         for (std::size_t k = 0; k < dp.events.size(); ++k) {
             CHECK(other->events[k].time == Approx(dp.events[k].time).margin(1e-5));

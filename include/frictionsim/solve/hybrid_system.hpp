@@ -22,6 +22,7 @@
 //   void rhs_guards(double t, const double* x, const Mode& mode, double* dxdt, double* g) const;  // both from one
 //        evaluation: Dormand-Prince then checks the guards at its stages instead of extra dense-output points
 //   the Jacobian in one of the forms of solve/jacobian.hpp (dense, banded, sparse entries) for the implicit methods
+//   static constexpr bool autonomous = true;    // rhs does not depend on t: Rosenbrock skips its df/dt difference
 //
 // An Integrator<S> provides
 //   Integrator(const S& system, const SolverOptions& options);

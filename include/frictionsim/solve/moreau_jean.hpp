@@ -11,7 +11,8 @@
 // contact has v = 0 exactly. The one-step problem is solved by an active-set (primal-dual, semi-smooth Newton)
 // iteration over {stick, slip+, slip-} per contact, warm-started from the previous step: each iteration solves
 // W v = b with the stuck degrees of freedom eliminated (their rows and columns replaced by the identity, so the
-// band stays a band), one banded LDL^T factorisation when the stuck set changed and none when it did not. On a
+// band stays a band), one banded LDL^T factorisation when the stuck set changed and none when it did not (on a
+// chain, W tridiagonal, only the pieces between stuck dofs that hold a switched one are refactored). On a
 // string W is a Stieltjes matrix, for which this iteration converges monotonically in the monotone case
 // (Hintermueller, Ito and Kunisch 2002, SIAM J. Optim. 13, Thm 3.1); static > kinetic (a non-monotone law) keeps
 // Leine's switch model: a contact at rest, or reaching rest within the step, sticks while |r| <= static.
@@ -154,6 +155,38 @@ public:
             for (Eigen::Index m = i + 1; m <= std::min(n_ - 1, i + b_); ++m) x(i) -= low(m, m - i) * x(m);
     }
 
+    /// Tridiagonal only (b = 1): refactor after the stuck set changed from `was` to `stuck`, where W has diagonal
+    /// `wd` and subdiagonal `wl` (wl[i] = W(i, i-1)) and a stuck dof's row and column are the identity's. A stuck
+    /// dof cuts the chain, so d_i depends on the dofs above it only back to the nearest stuck one: only the pieces
+    /// of the chain below a dof that switched (down to the next stuck dof) are recomputed.
+    bool refactor_tridiagonal(const double* wd, const double* wl, const char* stuck, const char* was) {
+        double* l = low_.data();
+        double* d = diag_.data();
+        bool carry = false;  // d_{i-1} was recomputed: d_i follows it unless a stuck dof cuts the chain
+        for (Eigen::Index i = 0; i < n_; ++i) {
+            const std::size_t k = idx(i);
+            const bool switched = stuck[k] != was[k] || (i > 0 && stuck[k - 1] != was[k - 1]);
+            if (!switched && !carry) continue;
+            if (stuck[k]) {
+                d[k] = 1.0;
+                l[k] = 0.0;
+                carry = false;
+                continue;
+            }
+            if (i == 0 || stuck[k - 1]) {
+                l[k] = 0.0;
+                d[k] = wd[k];
+            } else {
+                const double li = wl[k] / d[k - 1];
+                d[k] = wd[k] - li * wl[k];
+                l[k] = li;
+            }
+            if (!(d[k] > 0.0)) return false;
+            carry = true;
+        }
+        return true;
+    }
+
 private:
     // A string's W: the same recurrences without the band loops (they dominate a 1000-node step).
     bool factor_tridiagonal() {
@@ -253,6 +286,28 @@ public:
             w_ = sys_.mass;
         w_.makeCompressed();
         w_diag_ = w_.diagonal();
+        w_sub_.assign(static_cast<std::size_t>(n), 0.0);
+        for (int k = 0; k < w_.outerSize(); ++k)
+            for (Sparse::InnerIterator it(w_, k); it; ++it)
+                if (it.row() == it.col() + 1) w_sub_[static_cast<std::size_t>(it.row())] = it.value();
+        free_operator_ = sys_.mass - ((1.0 - th) * h) * sys_.damping - (th * (1.0 - th) * h * h) * sys_.stiffness;
+        free_operator_.makeCompressed();
+        step_stiffness_ = h * sys_.stiffness;
+        step_stiffness_.makeCompressed();
+        chain_.assign(static_cast<std::size_t>(n), Chain{});
+        const auto to_chain = [&](const Sparse& a, double Chain::*diag, double Chain::*sub) {
+            for (int k = 0; k < a.outerSize(); ++k)
+                for (Sparse::InnerIterator it(a, k); it; ++it) {
+                    const Eigen::Index i = it.row(), j = it.col();
+                    if (i == j) chain_[static_cast<std::size_t>(i)].*diag += it.value();
+                    else if (i == j + 1) chain_[static_cast<std::size_t>(i)].*sub += it.value();
+                    else if (i + 1 != j) return false;  // (i, i + 1) is (i + 1, i): A and K are symmetric
+                }
+            return true;
+        };
+        if (!(to_chain(free_operator_, &Chain::a_diag, &Chain::a_sub) &&
+              to_chain(step_stiffness_, &Chain::k_diag, &Chain::k_sub)))
+            chain_.clear();  // wider than a chain: the sparse products
         band_ = 0;
         for (int k = 0; k < w_.outerSize(); ++k)
             for (Eigen::SparseMatrix<double>::InnerIterator it(w_, k); it; ++it)
@@ -347,19 +402,40 @@ private:
     }
 
     /// b = W v - h C v - h K (q + theta h v) + h f_theta (the free velocity's right-hand side).
+    /// Written as b = A v - h K q + h f_theta, A = M - (1 - theta) h C - theta (1 - theta) h^2 K (precomputed).
     void free_rhs(double h) {
         const double th = opt_.theta;
         f_applied_ = th * f_next_ + (1.0 - th) * f_now_;
-        x_ = q_ + (th * h) * v_;
-        b_.noalias() = w_ * v_;
-        b_.noalias() -= h * (sys_.damping * v_);
-        b_.noalias() -= h * (sys_.stiffness * x_);
+        if (!chain_.empty()) {  // tridiagonal A and K: one pass instead of two sparse products
+            const Eigen::Index n = v_.size();
+            const double* v = v_.data();
+            const double* q = q_.data();
+            const double* f = f_applied_.data();
+            const Chain* c = chain_.data();
+            double* b = b_.data();
+            for (Eigen::Index i = 0; i < n; ++i) {
+                double s = c[i].a_diag * v[i] - c[i].k_diag * q[i] + h * f[i];
+                if (i > 0) s += c[i].a_sub * v[i - 1] - c[i].k_sub * q[i - 1];
+                if (i + 1 < n) s += c[i + 1].a_sub * v[i + 1] - c[i + 1].k_sub * q[i + 1];
+                b[i] = s;
+            }
+            return;
+        }
+        b_.noalias() = free_operator_ * v_;
+        b_.noalias() -= step_stiffness_ * q_;
         b_ += h * f_applied_;
     }
 
     /// Factor W with the dofs in `stuck` replaced by identity rows/columns; no work if that set is factored.
     bool factor_with(const std::vector<char>& stuck) {
         if (stuck == factored_stuck_) return true;
+        if (band_ == 1 && factored_once_) {  // a chain: only the pieces below the switched dofs change
+            ++stats_.factorisations;
+            const bool ok = ldlt_.refactor_tridiagonal(w_diag_.data(), w_sub_.data(), stuck.data(),
+                                                       factored_stuck_.data());
+            factored_stuck_ = stuck;
+            return ok;
+        }
         ldlt_.clear();
         for (int k = 0; k < w_.outerSize(); ++k)
             for (Sparse::InnerIterator it(w_, k); it; ++it) {
@@ -373,7 +449,8 @@ private:
             if (stuck[i]) ldlt_.diagonal(static_cast<Eigen::Index>(i)) = 1.0;
         ++stats_.factorisations;
         factored_stuck_ = stuck;
-        return ldlt_.factor();
+        factored_once_ = ldlt_.factor();
+        return factored_once_;
     }
 
     void step_inclusion(double h) {
@@ -389,10 +466,10 @@ private:
             const double speed = std::abs(v_prev_(static_cast<Eigen::Index>(c.dof)));
             level_[j] = speed < c.slow_speed ? c.slow_bound : c.kinetic_bound;
         }
+        for (std::size_t j = 0; j < nc; ++j)  // kept in step with modes_ below
+            stuck_[sys_.contacts[j].dof] = modes_[j] == ContactState::stick ? 1 : 0;
         for (int iter = 0;; ++iter) {
             // the linear solve for the current guess: stuck dofs at rest, slipping ones at -kinetic sgn
-            for (std::size_t j = 0; j < nc; ++j)
-                stuck_[sys_.contacts[j].dof] = modes_[j] == ContactState::stick ? 1 : 0;
             if (!factor_with(stuck_)) throw_at(t_, "W lost positive definiteness");
             x_ = b_;
             for (std::size_t j = 0; j < nc; ++j) {
@@ -442,6 +519,7 @@ private:
                     modes_[j] = reaction_(d) > 0.0 ? ContactState::slip_negative : ContactState::slip_positive;
                 else  // reaches rest within the step: Leine's stick test (against the static bound) next
                     modes_[j] = ContactState::stick;
+                stuck_[static_cast<std::size_t>(d)] = modes_[j] == ContactState::stick ? 1 : 0;
             }
         }
         v_.swap(x_);
@@ -524,8 +602,14 @@ private:
     MoreauJeanOptions opt_;
     Eigen::VectorXd q_, v_, q_prev_, v_prev_, f_now_, f_next_, f_applied_, b_, x_, reaction_;
     double t_;
-    Sparse w_;
+    Sparse w_, free_operator_, step_stiffness_;
+    struct Chain {  // row i of tridiagonal A and h K: (i, i) and (i, i - 1)
+        double a_diag = 0.0, a_sub = 0.0, k_diag = 0.0, k_sub = 0.0;
+    };
+    std::vector<Chain> chain_;  // empty unless A and h K are tridiagonal
     Eigen::VectorXd w_diag_;
+    std::vector<double> w_sub_;  // W(i, i - 1): the chain's refactorisation reads it
+    bool factored_once_ = false;
     Eigen::Index band_ = 0;
     detail::BandLDLT ldlt_;
     std::vector<ContactState> modes_, previous_modes_;

@@ -20,6 +20,8 @@ enum class Method {
     dormand_prince,  ///< header-only explicit RK5(4) with dense output: accuracy-limited, non-stiff rigs
     cvode_bdf,       ///< SUNDIALS CVODE, BDF + Newton with dense direct solver: stiff contact laws
     cvode_adams,     ///< SUNDIALS CVODE, Adams-Moulton + fixed point: smooth, non-stiff
+    rosenbrock,      ///< header-only RODAS4 on Eigen (solve/rosenbrock.hpp): stiff, dense or banded LU; needs
+                     ///< FRICTIONSIM_EIGEN (the CMake target frictionsim::eigen defines it)
 };
 
 inline const char* method_name(Method m) {
@@ -28,16 +30,17 @@ inline const char* method_name(Method m) {
         case Method::dormand_prince: return "dormand_prince";
         case Method::cvode_bdf: return "cvode_bdf";
         case Method::cvode_adams: return "cvode_adams";
+        case Method::rosenbrock: return "rosenbrock";
     }
     return "unknown";
 }
 
-/// The linear solver inside CVODE's Newton iteration (BDF only).
+/// The linear solver of the implicit methods: CVODE BDF's Newton iteration, Rosenbrock's stage systems.
 enum class LinearSolver {
     automatic,  ///< band when the system declares jacobian_bandwidths(), else dense
     dense,      ///< SUNDIALS dense LU: O(n^3) per factorisation, right for the lab rigs' 2-20 states
     band,       ///< SUNDIALS band LU: O(n (lower + upper)^2), a string's nodes couple only their neighbours
-    sparse,     ///< KLU (SuiteSparse) on the system's jacobian_pattern(): needs jacobian_entries()
+    sparse,     ///< KLU (SuiteSparse) on the system's jacobian_pattern(): needs jacobian_entries(); CVODE only
 };
 
 inline const char* linear_solver_name(LinearSolver s) {
@@ -64,7 +67,7 @@ constexpr Method resolve_method(Method requested) {
 
 struct SolverOptions {
     Method method = Method::automatic;
-    LinearSolver linear_solver = LinearSolver::automatic;  ///< CVODE BDF's Newton solver
+    LinearSolver linear_solver = LinearSolver::automatic;  ///< CVODE BDF's and Rosenbrock's linear solver
     double rtol = 1e-8;
     double atol = 1e-10;                 ///< scalar absolute tolerance, used when atol_per_state is empty
     std::vector<double> atol_per_state;  ///< one absolute tolerance per state, overrides atol
