@@ -17,6 +17,7 @@
 #include "hybrid_system.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "root_location.hpp"
 #include "system_size.hpp"
 
 namespace frictionsim {
@@ -64,14 +65,11 @@ public:
     using Mode = system_mode_t<System>;
 
     DormandPrince(const System& system, const SolverOptions& options)
-        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)) {
+        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)), roots_(system) {
         for (State* v : {&y_, &y1_, &ytmp_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &rc1_, &rc2_, &rc3_, &rc4_, &rc5_})
             *v = make_state_array(system);
-        for (Guards* v : {&stage_g_[0], &stage_g_[1], &stage_g_[2], &stage_g_[3], &end_g_, &g_, &g1_, &reference_,
-                          &g_lo_, &g_k_, &g_scratch_})
+        for (Guards* v : {&stage_g_[0], &stage_g_[1], &stage_g_[2], &stage_g_[3], &end_g_, &g1_, &g_gap_})
             *v = make_guard_array(system);
-        masked_ = make_guard_array<System, bool>(system);
-        roots_ = make_guard_array<System, int>(system);
     }
 
     void restart(double t, const double* x, const Mode& mode) {
@@ -85,9 +83,8 @@ public:
         h_ = std::min(h_dense_accepted_, opt_.max_step);
         log_facold_ = kLogFacoldMin;
         last_rejected_ = false;
-        guards(t_, y_, g_);
-        for (std::size_t i = 0; i < G(); ++i) masked_[i] = g_[i] == 0.0;
-        std::fill(roots_.begin(), roots_.end(), 0);
+        guards(t_, y_, roots_.values());
+        roots_.restarted();
         ++stats_.restarts;
     }
 
@@ -123,7 +120,7 @@ public:
     double time() const { return t_; }
     double previous_time() const { return t_prev_; }
     const double* state() const { return y_.data(); }
-    const int* roots() const { return roots_.data(); }
+    const int* roots() const { return roots_.roots(); }
     SolverStats stats() const { return stats_; }
 
 private:
@@ -145,8 +142,6 @@ private:
     }();
 
     // Dormand-Prince 5(4) tableau.
-    /// Points per step (the end included) at which the guards are checked on the dense output.
-    static constexpr int kScanPoints = 4;
     /// With rhs_guards, the guards come free with the stages (c = 0.2, 0.3, 0.8, 8/9 and the end, exact there):
     /// those values and one dense-output point in their widest gap (0.3 to 0.8) leave no gap over h/4, as the
     /// uniform scan does, and the full scan runs only when one of them shows a crossing.
@@ -215,7 +210,7 @@ private:
         t_ = t_stop;
         y_ = y1_;
         rhs(t_, y_, k1_);
-        guards(t_, y_, g_);
+        guards(t_, y_, roots_.values());
         return {t_, false};
     }
 
@@ -310,126 +305,54 @@ private:
         h_ = h_new;
     }
 
-    // After an accepted step: did a switching function cross zero in its direction? If so, find the earliest
-    // crossing on the dense output (Illinois), cut the step there and report every guard that has crossed.
-    // The guards are also sampled at interior points of the dense output: a guard that crosses and comes back
-    // within one step has the same sign at both ends (a short reversal of v_r), and checking the ends alone
-    // would miss that switch and leave the law on the wrong branch (cf. SciML's interp_points).
+    // After an accepted step: did a switching function cross zero in its direction? If so, cut the step at the
+    // earliest crossing on the dense output (root_location.hpp) and report every guard that has crossed.
     StepResult locate_roots() {
         if constexpr (kNoGuards) {
             return {t_, false};
         } else {
             if (G() == 0) return {t_, false};
-            Guards &g1 = g1_, &reference = reference_, &g_lo = g_lo_, &g_k = g_k_;
+            Guards& g1 = g1_;
             if constexpr (kStageGuards) g1 = end_g_;
             else guards(t_, y_, g1);
-            for (std::size_t i = 0; i < G(); ++i) reference[i] = reference_value(i, g1[i]);
+            roots_.set_references(mode_, g1);
             if constexpr (kStageGuards) {
-                if (!crossing_seen(reference, g1)) return no_root(g1);
-            }
-            double t_root = t_, lo = t_prev_;
-            g_lo = reference;
-            bool any = false;
-            for (int k = 1; k <= kScanPoints && !any; ++k) {
-                const double t_k = k == kScanPoints ? t_ : t_prev_ + (t_ - t_prev_) * k / kScanPoints;
-                if (k == kScanPoints) {
-                    g_k = g1;
-                } else {
-                    interpolate(t_k, ytmp_.data());
-                    guards(t_k, ytmp_, g_k);
+                if (!crossing_seen(g1)) {
+                    roots_.no_root(g1);
+                    return {t_, false};
                 }
-                for (std::size_t i = 0; i < G(); ++i) {
-                    if (crossed(i, reference[i], g_k[i]) == 0) continue;
-                    any = true;
-                    t_root = std::min(t_root, bracket_root(i, reference[i], lo, t_k, g_lo[i], g_k[i]));
-                }
-                lo = t_k;
-                g_lo = g_k;
             }
-            if (!any) return no_root(g1);
+            const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
+            double t_root = t_;
+            const bool any = roots_.scan(mode_, t_prev_, t_, g1, tol, [this](double t, Guards& g) {
+                interpolate(t, ytmp_.data());
+                guards(t, ytmp_, g);
+            }, t_root);
+            if (!any) {
+                roots_.no_root(g1);
+                return {t_, false};
+            }
             if (t_root < t_) {
                 interpolate(t_root, y_.data());
                 t_ = t_root;
                 guards(t_, y_, g1);
                 rhs(t_, y_, k1_);
             }
-            for (std::size_t i = 0; i < G(); ++i) roots_[i] = crossed(i, reference[i], g1[i]);
+            roots_.mark(mode_, g1);
             return {t_, true};
         }
     }
 
-    StepResult no_root(const Guards& g1) {
-        for (std::size_t i = 0; i < G(); ++i) {
-            if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
-            g_[i] = g1[i];
-        }
-        return {t_, false};
-    }
-
     // Any guard crossed from its reference at the step's end, at a stage of the accepted step, or at the dense
     // output in the stages' widest gap? Only then is the full scan worth its guard evaluations.
-    bool crossing_seen(const Guards& reference, const Guards& g1) {
-        const auto any_crossed = [&](const Guards& g) {
-            for (std::size_t i = 0; i < G(); ++i)
-                if (crossed(i, reference[i], g[i]) != 0) return true;
-            return false;
-        };
-        if (any_crossed(g1)) return true;
+    bool crossing_seen(const Guards& g1) {
+        if (roots_.crosses(mode_, g1)) return true;
         for (const auto& g : stage_g_)
-            if (any_crossed(g)) return true;
-        Guards& g_gap = g_scratch_;
+            if (roots_.crosses(mode_, g)) return true;
         const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
         interpolate(t_gap, ytmp_.data());
-        guards(t_gap, ytmp_, g_gap);
-        return any_crossed(g_gap);
-    }
-
-    /// Guard i's crossing (+1 rising, -1 falling, 0 none) from `reference` to `value`; a masked guard that has
-    /// not left its surface (reference 0) does not cross.
-    int crossed(std::size_t i, double reference, double value) const {
-        if (masked_[i] && reference == 0.0) return 0;
-        return crossing(reference, value, sys_.guard_direction(i, mode_));
-    }
-
-    // The value a crossing of guard i is judged against. A guard masked since a restart (it sat at zero and the
-    // hybrid loop's probe found it leaving towards its non-triggering side) counts as just off zero on that
-    // side once it has moved: if a step ends with it on the triggering side, it went out and came back within
-    // the step, and that return is a switch to locate. Taking its first non-zero value as the reference
-    // instead would miss it. Returns 0 while a masked guard has not moved, or has no non-triggering side.
-    double reference_value(std::size_t i, double g_now) const {
-        if (!masked_[i]) return g_[i];
-        if (g_now == 0.0) return 0.0;
-        const int dir = sys_.guard_direction(i, mode_);
-        if (dir == 0) return 0.0;  // both sides trigger: the probe would have fired had it moved
-        return dir < 0 ? std::numeric_limits<double>::denorm_min() : -std::numeric_limits<double>::denorm_min();
-    }
-
-    // Guard i crossed from `reference` (not yet at lo, where it is g_lo) to g_hi at hi, within the last step:
-    // Illinois false position on the dense output. Returns the right end of the final bracket, where the guard
-    // has already crossed (as CVODE does), to within CVODE's ttol.
-    double bracket_root(std::size_t i, double reference, double lo, double hi, double g_lo, double g_hi) {
-        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
-        const int dir = sys_.guard_direction(i, mode_);
-        int side = 0;
-        Guards& g = g_scratch_;
-        for (int iter = 0; iter < 200 && hi - lo > tol; ++iter) {
-            double tm = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-            if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
-            interpolate(tm, ytmp_.data());
-            guards(tm, ytmp_, g);
-            if (crossing(reference, g[i], dir) != 0) {
-                hi = tm;
-                g_hi = g[i];
-                if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end
-                side = 1;
-            } else {
-                lo = tm;
-                g_lo = g[i];
-                if (side == -1) g_hi *= 0.5;
-                side = -1;
-            }
-        }
-        return hi;
+        guards(t_gap, ytmp_, g_gap_);
+        return roots_.crosses(mode_, g_gap_);
     }
 
     const System& sys_;
@@ -444,10 +367,8 @@ private:
     bool last_rejected_ = false;
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
     State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
-    Guards g_{};
-    Guards g1_{}, reference_{}, g_lo_{}, g_k_{}, g_scratch_{};  ///< root location's work space (no heap per step)
-    GuardArray<System, bool> masked_{};
-    GuardArray<System, int> roots_{};
+    Guards g1_{}, g_gap_{};  ///< guards at the step's end and in the stages' gap (no heap per step)
+    detail::RootLocator<System> roots_;
     SolverStats stats_;
 };
 

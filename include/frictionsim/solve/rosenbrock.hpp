@@ -42,6 +42,7 @@
 #include "jacobian.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "root_location.hpp"
 #include "system_size.hpp"
 
 namespace frictionsim {
@@ -71,14 +72,12 @@ public:
     using Mode = system_mode_t<System>;
 
     Rodas4(const System& system, const SolverOptions& options)
-        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)) {
+        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)), roots_(system) {
         const auto idx = static_cast<Eigen::Index>(n_);
         for (Vector* v : {&y_, &y1_, &ytmp_, &f0_, &fs_, &dfdt_, &b_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &rc0_, &rc1_,
                           &rc2_, &rc3_, &work_, &saved_})
             v->setZero(idx);
-        for (Guards* v : {&g_, &g1_, &reference_, &g_lo_, &g_k_, &g_scratch_}) *v = make_guard_array(system);
-        masked_ = make_guard_array<System, bool>(system);
-        roots_ = make_guard_array<System, int>(system);
+        g1_ = make_guard_array(system);
         banded_ = use_band(options.linear_solver);
         if (banded_) {
             const Bandwidths b = bandwidths_of(system);
@@ -106,9 +105,8 @@ public:
         h_ = std::min(h_accepted_, opt_.max_step);
         controller_primed_ = false;
         last_rejected_ = false;
-        guards(t_, y_, g_);
-        for (std::size_t i = 0; i < g_count_; ++i) masked_[i] = g_[i] == 0.0;
-        std::fill(roots_.begin(), roots_.end(), 0);
+        guards(t_, y_, roots_.values());
+        roots_.restarted();
         ++stats_.restarts;
     }
 
@@ -158,7 +156,7 @@ public:
     double time() const { return t_; }
     double previous_time() const { return t_prev_; }
     const double* state() const { return y_.data(); }
-    const int* roots() const { return roots_.data(); }
+    const int* roots() const { return roots_.roots(); }
     SolverStats stats() const { return stats_; }
 
 private:
@@ -421,42 +419,25 @@ private:
         rhs(t_, y_, f0_);
         f0_current_ = true;
         jacobian_current_ = false;
-        guards(t_, y_, g_);
+        guards(t_, y_, roots_.values());
         return {t_, false};
     }
 
-    // After an accepted step: did a guard cross zero in its direction, at the end or at interior points of the
-    // dense output (a guard that crosses and comes back within the step has the same sign at both ends)? Then cut
-    // the step at the earliest crossing and report every guard that has crossed there.
+    // After an accepted step: did a guard cross zero in its direction? Then cut the step at the earliest crossing
+    // on the dense output (root_location.hpp) and report every guard that has crossed there.
     StepResult locate_roots() {
         if (g_count_ == 0) return {t_, false};
-        Guards &g1 = g1_, &reference = reference_, &g_lo = g_lo_, &g_k = g_k_;
+        Guards& g1 = g1_;
         guards(t_, y_, g1);
-        for (std::size_t i = 0; i < g_count_; ++i) reference[i] = reference_value(i, g1[i]);
-        double t_root = t_, lo = t_prev_;
-        g_lo = reference;
-        bool any = false;
-        for (int k = 1; k <= kScanPoints && !any; ++k) {
-            const double t_k = k == kScanPoints ? t_ : t_prev_ + (t_ - t_prev_) * k / kScanPoints;
-            if (k == kScanPoints) {
-                g_k = g1;
-            } else {
-                interpolate(t_k, ytmp_.data());
-                guards(t_k, ytmp_, g_k);
-            }
-            for (std::size_t i = 0; i < g_count_; ++i) {
-                if (crossed(i, reference[i], g_k[i]) == 0) continue;
-                any = true;
-                t_root = std::min(t_root, bracket_root(i, reference[i], lo, t_k, g_lo[i], g_k[i]));
-            }
-            lo = t_k;
-            g_lo = g_k;
-        }
+        roots_.set_references(mode_, g1);
+        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
+        double t_root = t_;
+        const bool any = roots_.scan(mode_, t_prev_, t_, g1, tol, [this](double t, Guards& g) {
+            interpolate(t, ytmp_.data());
+            guards(t, ytmp_, g);
+        }, t_root);
         if (!any) {
-            for (std::size_t i = 0; i < g_count_; ++i) {
-                if (masked_[i] && g1[i] != 0.0) masked_[i] = false;  // it left its surface: unmask
-                g_[i] = g1[i];
-            }
+            roots_.no_root(g1);
             return {t_, false};
         }
         if (t_root < t_) {
@@ -464,53 +445,8 @@ private:
             t_ = t_root;
             guards(t_, y_, g1);
         }
-        for (std::size_t i = 0; i < g_count_; ++i) roots_[i] = crossed(i, reference[i], g1[i]);
+        roots_.mark(mode_, g1);
         return {t_, true};
-    }
-
-    /// Points per step (the end included) at which the guards are checked on the dense output.
-    static constexpr int kScanPoints = 4;
-
-    int crossed(std::size_t i, double reference, double value) const {
-        if (masked_[i] && reference == 0.0) return 0;  // masked and not yet off its surface
-        return crossing(reference, value, sys_.guard_direction(i, mode_));
-    }
-
-    // A guard masked since a restart that has moved counts as just off zero on its non-triggering side (the hybrid
-    // loop's probe sent it that way): ending the step on the triggering side means it went out and came back.
-    double reference_value(std::size_t i, double g_now) const {
-        if (!masked_[i]) return g_[i];
-        if (g_now == 0.0) return 0.0;
-        const int dir = sys_.guard_direction(i, mode_);
-        if (dir == 0) return 0.0;
-        return dir < 0 ? std::numeric_limits<double>::denorm_min() : -std::numeric_limits<double>::denorm_min();
-    }
-
-    // Illinois false position on the dense output for guard i, crossed between lo and hi. Returns the right end
-    // of the final bracket (where the guard has crossed), to within CVODE's ttol.
-    double bracket_root(std::size_t i, double reference, double lo, double hi, double g_lo, double g_hi) {
-        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
-        const int dir = sys_.guard_direction(i, mode_);
-        int side = 0;
-        Guards& g = g_scratch_;
-        for (int iter = 0; iter < 200 && hi - lo > tol; ++iter) {
-            double tm = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-            if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
-            interpolate(tm, ytmp_.data());
-            guards(tm, ytmp_, g);
-            if (crossing(reference, g[i], dir) != 0) {
-                hi = tm;
-                g_hi = g[i];
-                if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end
-                side = 1;
-            } else {
-                lo = tm;
-                g_lo = g[i];
-                if (side == -1) g_hi *= 0.5;
-                side = -1;
-            }
-        }
-        return hi;
     }
 
     const System& sys_;
@@ -529,9 +465,8 @@ private:
     Eigen::PartialPivLU<Matrix> lu_;
     BandMatrix jacobian_band_;
     BandedLU band_lu_;
-    Guards g_{}, g1_{}, reference_{}, g_lo_{}, g_k_{}, g_scratch_{};
-    GuardArray<System, bool> masked_{};
-    GuardArray<System, int> roots_{};
+    Guards g1_{};  ///< guards at the step's end
+    detail::RootLocator<System> roots_;
     SolverStats stats_;
 };
 
