@@ -90,5 +90,7 @@ py::object register_axial(py::module_& m);
 py::object register_kinematic(py::module_& m);
 void register_contact(py::module_& m);
 py::object register_torsional(py::module_& m);
+/// fs.PipeSection, fs.DrillString, fs.NavarroLopezBit and the field-scale fs.StringRig (bindings/drillstring.cpp).
+py::object register_drillstring(py::module_& m);
 
 }  // namespace frictionsim::python

@@ -65,6 +65,7 @@ PYBIND11_MODULE(_core, m) {
     register_results(m);
     register_contact(m);
     // the rigs simulate() runs: each register_* binds one and hands its class back
-    m.attr("RIGS") = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m));
+    m.attr("RIGS") = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m),
+                                    register_drillstring(m));
     guard_construction(m);
 }

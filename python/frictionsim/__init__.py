@@ -1,8 +1,9 @@
 """frictionsim: friction-driven dynamics in drilling.
 
 A C++17 engine (stick-slip located as events, exact restarts, Dormand-Prince 5(4) and SUNDIALS CVODE) with the
-friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel); Python adds fitting, signal
-processing, plots, sweeps and a command line. SI units throughout.
+friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel), paper 001 (torsional rig)
+and field-scale drill strings (StringRig on a DrillString of PipeSections, frictionsim.drillstring); Python adds
+fitting, signal processing, plots, sweeps and a command line. SI units throughout.
 
     >>> import frictionsim as fs
     >>> rig = fs.AxialVibrationRig(friction=fs.Dahl(mu=0.41, tangential_stiffness=4e4))
@@ -13,10 +14,14 @@ processing, plots, sweeps and a command line. SI units throughout.
 from ._core import (
     FRICTION_LAWS,
     AxialVibrationRig,
+    DrillString,
     HystereticFriction,
     KinematicRig,
+    NavarroLopezBit,
     Parameter,
+    PipeSection,
     PowerLawCoefficient,
+    StringRig,
     TorsionalRig,
     table5,
     vibration_velocity_amplitude,
@@ -39,17 +44,21 @@ __all__ = [
     "BudgetExceededError",
     "CallableLaw",
     "ChatteringError",
+    "DrillString",
     "HystereticFriction",
     "Event",
     "FRICTION_LAWS",
     "InvalidParameterError",
     "KinematicRig",
     "METHODS",
+    "NavarroLopezBit",
     "Parameter",
+    "PipeSection",
     "SOLVER_DEFAULTS",
     "PowerLawCoefficient",
     "Result",
     "SimulationError",
+    "StringRig",
     "TorsionalRig",
     "simulate",
     "sweep",
@@ -63,6 +72,7 @@ def __getattr__(name: str):
     # Submodules with heavier imports (pandas, scipy, matplotlib, PyEMD, dask) load on first use: fs.fit, ...
     import importlib
 
-    if name in ("axial", "cli", "contact", "data", "demo", "fit", "plots", "scenario", "signal", "torsional"):
+    if name in ("axial", "cli", "contact", "data", "demo", "drillstring", "fit", "plots", "scenario", "signal",
+                "torsional"):
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'frictionsim' has no attribute {name!r}")

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'Parameter', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'Stribeck', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'Stribeck', 'StringRig', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -969,6 +969,486 @@ class HydraulicOscillatorParams:
     @property
     def wellbore_radius(self) -> float:
         ...
+class PipeSection:
+    """
+    One section of a drill string: a steel tube (drill pipe, heavy-weight pipe, collars). All keywords optional;
+    defaults: 5" drill pipe (OD 127 mm, ID 108.6 mm), 100 m, steel. SI units; ID < OD.
+    
+    Keywords
+    --------
+    outer_diameter : float = 0.127
+        OD [m], positive and finite: Outer diameter.
+    inner_diameter : float = 0.1086
+        ID [m], non-negative and finite: Inner diameter, < OD.
+    length : float = 100
+        L [m], positive and finite: Length of the section.
+    youngs_modulus : float = 210000000000
+        E [Pa], positive and finite: Young's modulus.
+    shear_modulus : float = 80800000000
+        G [Pa], positive and finite: Shear modulus.
+    density : float = 7850
+        rho [kg/m^3], positive and finite: Density of the steel.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, *, outer_diameter: float = 0.127, inner_diameter: float = 0.1086, length: float = 100, youngs_modulus: float = 210000000000, shear_modulus: float = 80800000000, density: float = 7850) -> None:
+        """
+        The section's geometry and steel by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def area(self) -> float:
+        """
+        A = pi (OD^2 - ID^2) / 4 [m^2].
+        """
+    @property
+    def axial_rigidity(self) -> float:
+        """
+        E A [N].
+        """
+    @property
+    def density(self) -> float:
+        """
+        rho [kg/m^3]: Density of the steel.
+        """
+    @property
+    def inertia_per_length(self) -> float:
+        """
+        rho I_p [kg m].
+        """
+    @property
+    def inner_diameter(self) -> float:
+        """
+        ID [m]: Inner diameter, < OD.
+        """
+    @property
+    def length(self) -> float:
+        """
+        L [m]: Length of the section.
+        """
+    @property
+    def mass_per_length(self) -> float:
+        """
+        rho A [kg/m].
+        """
+    @property
+    def outer_diameter(self) -> float:
+        """
+        OD [m]: Outer diameter.
+        """
+    @property
+    def polar_moment(self) -> float:
+        """
+        I_p = pi (OD^4 - ID^4) / 32 [m^4].
+        """
+    @property
+    def shear_modulus(self) -> float:
+        """
+        G [Pa]: Shear modulus.
+        """
+    @property
+    def torsional_rigidity(self) -> float:
+        """
+        G I_p [N m^2/rad].
+        """
+    @property
+    def youngs_modulus(self) -> float:
+        """
+        E [Pa]: Young's modulus.
+        """
+class DrillString:
+    """
+    A drill string as its sections, top to bottom (a sequence of PipeSection), and its lumped model.
+    
+    lump(elements) gives N elements of equal length dx = L / N, each a torsional spring G I_p / dx and an axial spring
+    E A / dx between two nodes, each element's inertia rho I_p dx and mass rho A dx split half to each node; an element
+    across a section boundary takes each section's share (compliances in series).
+    """
+    def __init__(self, sections: collections.abc.Sequence[PipeSection]) -> None:
+        """
+        Sections top to bottom.
+        """
+    def __len__(self) -> int:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def lump(self, elements: typing.SupportsInt | typing.SupportsIndex) -> dict:
+        """
+        The lumped string of N = elements: element_length dx [m], node_inertia J_i [kg m^2] and node_mass m_i [kg] (N + 1 nodes), torsional_stiffness [N m/rad] and axial_stiffness [N/m] (N springs).
+        """
+    @property
+    def length(self) -> float:
+        """
+        Total length L [m].
+        """
+    @property
+    def sections(self) -> list[PipeSection]:
+        """
+        The sections, top to bottom (copies).
+        """
+class NavarroLopezBit:
+    """
+    Velocity-weakening bit friction of Navarro-Lopez & Cortes (2007, Sec. 2):
+    
+        T_b(w) = c_b w + R_b W mu_b(w) sign(w),  mu_b(w) = mu_cb + (mu_sb - mu_cb) exp(-gamma_b |w| / v_f)   (slip)
+        |T_b| <= R_b W mu_sb                                                                              (stick)
+    
+    with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's parameter set.
+    
+    Parameters
+    ----------
+    bit_radius : float, optional
+        Bit radius. R_b [m], positive and finite. Default: 0.155575.
+    coulomb_coefficient : float, optional
+        Friction coefficient at high bit speed. mu_cb [-], positive and finite. Default: 0.5.
+    static_coefficient : float, optional
+        Static (break-away) friction coefficient, >= mu_cb. mu_sb [-], >= coulomb_coefficient and finite. Default: 0.8.
+    weakening_rate : float, optional
+        Rate of the exponential decay from mu_sb to mu_cb. gamma_b [-], non-negative and finite. Default: 0.9.
+    velocity_scale : float, optional
+        Bit speed scale of the decay. v_f [rad/s], positive and finite. Default: 1.
+    viscous_damping : float, optional
+        Viscous torque coefficient at the bit. c_b [N m s/rad], non-negative and finite. Default: 50.
+    stick_band : float, optional
+        Karnopp band: the bit sticks below this speed (0: exact stick). D_v [rad/s], non-negative and finite. Default: 0.
+    """
+    has_stick: typing.ClassVar[bool] = True
+    key: typing.ClassVar[str] = 'navarro_lopez_bit'
+    parameters: typing.ClassVar[tuple]
+    state_names: typing.ClassVar[tuple] = tuple()
+    stiff: typing.ClassVar[bool] = False
+    def __init__(self, bit_radius: typing.SupportsFloat | typing.SupportsIndex = 0.155575, coulomb_coefficient: typing.SupportsFloat | typing.SupportsIndex = 0.5, static_coefficient: typing.SupportsFloat | typing.SupportsIndex = 0.8, weakening_rate: typing.SupportsFloat | typing.SupportsIndex = 0.9, velocity_scale: typing.SupportsFloat | typing.SupportsIndex = 1, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 50, stick_band: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def coefficient(self, angular_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        mu_b(w) [-] at bit speed w [rad/s] (arrays broadcast).
+        """
+    def static_limit(self, weight_on_bit: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        R_b W mu_sb [N m]: the largest torque the stuck bit holds.
+        """
+    def torque(self, angular_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], weight_on_bit: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        Slip torque T_b [N m] at bit speed w [rad/s] under weight on bit W [N] (0 at w = 0: the stuck bit's torque is whatever holds it, within static_limit).
+        """
+    @property
+    def bit_radius(self) -> float:
+        """
+        R_b [m]: Bit radius.
+        """
+    @property
+    def coulomb_coefficient(self) -> float:
+        """
+        mu_cb [-]: Friction coefficient at high bit speed.
+        """
+    @property
+    def static_coefficient(self) -> float:
+        """
+        mu_sb [-]: Static (break-away) friction coefficient, >= mu_cb.
+        """
+    @property
+    def stick_band(self) -> float:
+        """
+        D_v [rad/s]: Karnopp band: the bit sticks below this speed (0: exact stick).
+        """
+    @property
+    def velocity_scale(self) -> float:
+        """
+        v_f [rad/s]: Bit speed scale of the decay.
+        """
+    @property
+    def viscous_damping(self) -> float:
+        """
+        c_b [N m s/rad]: Viscous torque coefficient at the bit.
+        """
+    @property
+    def weakening_rate(self) -> float:
+        """
+        gamma_b [-]: Rate of the exponential decay from mu_sb to mu_cb.
+        """
+class StringRig:
+    """
+    A drill string on the event-driven engine (drillstring/string_rig.hpp): the lumped string of a DrillString (N
+    elements of equal length, node 0 at the top, node N at the bit), in torsion and optionally axially:
+    
+        J_i w_i' = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
+        m_i v_i' = F_i - F_{i-1} + w_b,i cos I [- H at node 0] [+ F_x sin(2 pi f_x t) at excitation_node] - F_wall,i [- W]
+        tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e)   (and the same for F_e with E A / dx)
+    
+    Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
+    +-T_max) with anti-windup, or a prescribed surface speed. A wall contact at each chosen node with `friction` (any
+    law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
+    inclined hole's buoyed weight w_b sin I. Torsion-only: exact per-contact stick; axial=True: friction against the
+    resultant of axial and circumferential sliding (paper 000's friction vector). The bit: None (off bottom) or a
+    NavarroLopezBit under weight_on_bit W [N] on node N (velocity weakening, exact stick).
+    
+    Parameters
+    ----------
+    string : DrillString
+    friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw) of the wall contacts
+    bit : NavarroLopezBit or None
+        None: the bit hangs off bottom (node N may carry a wall contact).
+    weight_on_bit : float or None
+        W [N], required with a bit.
+    elements : int = 20
+        N.
+    top_drive : {"pi_motor", "prescribed_speed"}
+    axial : bool = False
+        Also the axial motion (u_i, v_i per node).
+    hoisting : {"hook_speed", "hook_load"}
+        The axial top boundary (with axial=True).
+    wall_contacts : bool = True
+        False: no wall contact at all.
+    contact_nodes : sequence of int or None
+        Nodes with a wall contact, increasing, in 1..N (below N with the bit on bottom). None: every such node.
+    normal_forces : sequence of float or None
+        One normal force [N] per contact node. None: w_b sin(inclination) per node.
+    excitation_node : int = 0
+        Node of the axial excitation F_x sin(2 pi f_x t).
+    
+    States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
+    law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
+    wall_friction_work, damping_work, bit_work (drive + hoist + excitation = energy change + friction + damping + bit).
+    The Result's friction_force is the total wall friction torque [N m]; its mode counts the stuck wall contacts.
+    frictionsim.drillstring reads bit and surface speed, surface torque and stuck contacts out of a Result.
+    
+    Keywords
+    --------
+    damping_time : float = 0
+        beta [s], non-negative and finite: Structural damping: each element's damping is beta times its stiffness (modal ratio beta w / 2).
+    top_drive_inertia : float = 500
+        J_td [kg m^2], positive and finite: Top-drive inertia at the quill (PI-controlled drive).
+    surface_speed : float = 6.28318530718
+        w_set [rad/s], finite: Set speed of the PI drive, or the prescribed surface speed.
+    proportional_gain : float = 5000
+        k_p [N m s/rad], non-negative and finite: PI proportional gain.
+    integral_gain : float = 2000
+        k_i [N m/rad], non-negative and finite: PI integral gain.
+    torque_limit : float = 60000
+        T_max [N m], positive and finite: Top-drive torque limit.
+    mud_density : float = 1200
+        rho_mud [kg/m^3], non-negative and finite: Mud density (buoyancy); below the steel's.
+    inclination : float = 0
+        I [rad], in [0, 3.14159265359]: Hole inclination from vertical (straight hole).
+    hook_speed : float = 0
+        v_hook [m/s], finite: Prescribed hook speed, positive down.
+    hook_load : float = 0
+        H [N], finite: Prescribed hook load, upwards.
+    excitation_amplitude : float = 0
+        F_x [N], non-negative and finite: Axial excitation amplitude (hydraulic oscillator, agitator).
+    excitation_frequency : float = 0
+        f_x [Hz], non-negative and finite: Axial excitation frequency.
+    stick_speed : float = 0.0001
+        s_stick [m/s], positive and finite: Sliding speed at which an axially moving set-valued contact is caught to stick.
+    initial_speed : float = 0
+        w0 [rad/s], finite: Rotation of the whole string at t = 0.
+    initial_axial_speed : float = 0
+        v0 [m/s], finite: Axial speed of the whole string at t = 0.
+    end_inertia : float = 0
+        J_end [kg m^2], non-negative and finite: Inertia of a rigid BHA added to the bit node.
+    end_mass : float = 0
+        m_end [kg], non-negative and finite: Mass of a rigid BHA added to the bit node.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.28318530718, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0) -> None:
+        """
+        The string, the wall law, then the rig's set-up and parameters by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, t_end: typing.SupportsFloat | typing.SupportsIndex, options: SolverOptions, t_start: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    def bit_torque(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The torque on bit [N m] at each row (0 off bottom; the holding torque while the bit sticks).
+        """
+    def omega_index(self, node: typing.SupportsInt | typing.SupportsIndex) -> int:
+        """
+        Column of omega_node [rad/s] in the states.
+        """
+    def surface_torque(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The torque the surface applies [N m] at each row (t [s], states (rows, states)): the motor's under PI control, what holds the prescribed speed otherwise.
+        """
+    def theta_index(self, node: typing.SupportsInt | typing.SupportsIndex) -> int:
+        """
+        Column of theta_node [rad] in the states.
+        """
+    def work_index(self) -> int:
+        """
+        Column of drive_work, the first of the six work integrals.
+        """
+    @property
+    def axial(self) -> bool:
+        ...
+    @property
+    def bit(self) -> typing.Any:
+        """
+        The bit law (NavarroLopezBit), or None off bottom.
+        """
+    @property
+    def contact_nodes(self) -> list[int]:
+        """
+        The nodes with a wall contact (as the rig placed them).
+        """
+    @property
+    def damping_time(self) -> float:
+        """
+        beta [s]: Structural damping: each element's damping is beta times its stiffness (modal ratio beta w / 2).
+        """
+    @property
+    def elements(self) -> int:
+        """
+        N.
+        """
+    @property
+    def end_inertia(self) -> float:
+        """
+        J_end [kg m^2]: Inertia of a rigid BHA added to the bit node.
+        """
+    @property
+    def end_mass(self) -> float:
+        """
+        m_end [kg]: Mass of a rigid BHA added to the bit node.
+        """
+    @property
+    def excitation_amplitude(self) -> float:
+        """
+        F_x [N]: Axial excitation amplitude (hydraulic oscillator, agitator).
+        """
+    @property
+    def excitation_frequency(self) -> float:
+        """
+        f_x [Hz]: Axial excitation frequency.
+        """
+    @property
+    def excitation_node(self) -> int:
+        ...
+    @property
+    def friction(self) -> typing.Any:
+        """
+        The wall contacts' friction law.
+        """
+    @property
+    def hoisting(self) -> str:
+        ...
+    @property
+    def hook_load(self) -> float:
+        """
+        H [N]: Prescribed hook load, upwards.
+        """
+    @property
+    def hook_speed(self) -> float:
+        """
+        v_hook [m/s]: Prescribed hook speed, positive down.
+        """
+    @property
+    def inclination(self) -> float:
+        """
+        I [rad]: Hole inclination from vertical (straight hole).
+        """
+    @property
+    def initial_axial_speed(self) -> float:
+        """
+        v0 [m/s]: Axial speed of the whole string at t = 0.
+        """
+    @property
+    def initial_speed(self) -> float:
+        """
+        w0 [rad/s]: Rotation of the whole string at t = 0.
+        """
+    @property
+    def integral_gain(self) -> float:
+        """
+        k_i [N m/rad]: PI integral gain.
+        """
+    @property
+    def mud_density(self) -> float:
+        """
+        rho_mud [kg/m^3]: Mud density (buoyancy); below the steel's.
+        """
+    @property
+    def node_inertia(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        J_i [kg m^2] of each node (with J_td at node 0 under PI control, J_end at node N).
+        """
+    @property
+    def node_mass(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        m_i [kg] of each node (with m_end at node N).
+        """
+    @property
+    def node_radius(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Contact radius of each node [m] (the larger OD on a section boundary).
+        """
+    @property
+    def normal_forces(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The normal force of each contact [N], in contact_nodes order.
+        """
+    @property
+    def on_bottom(self) -> bool:
+        ...
+    @property
+    def period(self) -> None:
+        """
+        None: a string has no imposed period (its stick-slip period is an outcome).
+        """
+    @property
+    def proportional_gain(self) -> float:
+        """
+        k_p [N m s/rad]: PI proportional gain.
+        """
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def stick_speed(self) -> float:
+        """
+        s_stick [m/s]: Sliding speed at which an axially moving set-valued contact is caught to stick.
+        """
+    @property
+    def string(self) -> DrillString:
+        """
+        The DrillString.
+        """
+    @property
+    def surface_speed(self) -> float:
+        """
+        w_set [rad/s]: Set speed of the PI drive, or the prescribed surface speed.
+        """
+    @property
+    def top_drive(self) -> str:
+        ...
+    @property
+    def top_drive_inertia(self) -> float:
+        """
+        J_td [kg m^2]: Top-drive inertia at the quill (PI-controlled drive).
+        """
+    @property
+    def torque_limit(self) -> float:
+        """
+        T_max [N m]: Top-drive torque limit.
+        """
+    @property
+    def wall_contacts(self) -> bool:
+        ...
+    @property
+    def weight_on_bit(self) -> typing.Any:
+        """
+        W [N], or None off bottom.
+        """
 class HystereticFriction:
     """
     Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]
@@ -1468,4 +1948,4 @@ def whole_cycle_window(t_first: typing.SupportsFloat | typing.SupportsIndex, t_l
     (t_a, t_b, cycles): whole cycles of `period` [s] after `transient` [s]; cycles <= 0 takes all that fit.
     """
 FRICTION_LAWS: tuple = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip)
-RIGS: tuple = (AxialVibrationRig, KinematicRig, TorsionalRig)
+RIGS: tuple = (AxialVibrationRig, KinematicRig, TorsionalRig, StringRig)

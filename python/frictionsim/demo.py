@@ -1,5 +1,5 @@
-"""The built-in demo, ``frictionsim demo``: paper 000's axial vibrating-sliding rig (shale on 45 steel) and paper
-001's torsional drill-string rig.
+"""The built-in demo, ``frictionsim demo``: paper 000's axial vibrating-sliding rig (shale on 45 steel), paper
+001's torsional drill-string rig and a field-scale drill string.
 
 1. Fig. 7: the dry case (Table 4 run VS3: u0 = 5 mm, f = 17 Hz, v_d = 60 mm/min, F_N = 90 N) and the OBM case
    (VS17: u0 = 4 mm, f = 20 Hz, F_N = 30 N) with Coulomb (eq 8) and Dahl (eq 9) friction side by side: each is a
@@ -21,6 +21,13 @@
    f_n = 0.789 Hz (:func:`frictionsim.torsional.compare_laws`, ``law_comparison.csv`` and ``.png``); and the
    stick-slip map over w_ref and N2 with the eq 6 law (:func:`frictionsim.torsional.stick_slip_map` on two
    threads, 40 s per point, ``stick_slip_map.csv`` and ``.png``).
+6. A field string (issue 13), into ``<out>/field_string/``: 2800 m of 5" drill pipe above 200 m of 6 1/2" collars
+   in a 60 degree hole, lumped into 30 elements (100 m), Coulomb wall friction at every node (mu = 0.2, mu_s =
+   0.25) under the buoyed weight's normal force, PI top drive, the Navarro-Lopez velocity-weakening bit on bottom
+   (:func:`field_rig`); its stick-slip map over surface speed and weight on bit
+   (:func:`frictionsim.drillstring.stick_slip_map`, 60 s from rest per point, measured after 30 s:
+   ``stick_slip_map.csv`` and ``.png``) and, at one stick-slip point, bit and surface speed and torque over time
+   (``time_series.csv``, ``speeds.png``).
 
 Scenario choices follow examples/axial_rig_demo.cpp (the C++ demo): m = 0.2 kg, k_d = 2e4 N/m, mu = 0.41 (dry) and
 0.27 (OBM), Dahl k_t = 40 N/mm (Fig. 10), 2 s with the mean over the last 10 cycles; sweep ratios 0.05-1.5,
@@ -39,12 +46,13 @@ from typing import Dict, List, Sequence, Tuple, Union
 
 import numpy as np
 
+from . import drillstring as ds
 from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_comparison
 from .scenario import Scenario, ScenarioRun, loads, run
 from .torsional import FIG7 as PAPER001_FIG7
 
-__all__ = ["BUILTIN_SCENARIOS", "Demo", "Paper001", "builtin_scenario", "compute", "format_table", "paper001",
-           "table5_refit"]
+__all__ = ["BUILTIN_SCENARIOS", "Demo", "FieldString", "Paper001", "builtin_scenario", "compute", "field_rig",
+           "field_string", "format_table", "paper001", "table5_refit"]
 
 #: The built-in scenarios: package data (python/frictionsim/scenarios/), linked from examples/scenarios/.
 BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm", "fig7_torsional")
@@ -63,6 +71,15 @@ QUICK_MAP_REFERENCE_SPEEDS = (2.0, 5.76, 10.0, 18.0)
 QUICK_MAP_NORMAL_FORCES = (15.0, 35.0, 70.0)
 MAP_T_END, MAP_TRANSIENT = 40.0, 20.0  #: s per map point, as Fig. 7's scenario
 MAP_THREADS = 2
+
+#: The field string's map: surface speed w_set [rad/s] x weight on bit W [N] (--quick: smaller), the time series'
+#: point (a stick-slip point), and the run length and transient [s]
+FIELD_SPEEDS = (2.0, 4.0, 6.0, 8.0, 10.0, 12.0, 15.0)
+FIELD_WEIGHTS = (25e3, 50e3, 100e3, 150e3)
+QUICK_FIELD_SPEEDS = (3.0, 6.0, 10.0, 15.0)
+QUICK_FIELD_WEIGHTS = (50e3, 150e3)
+FIELD_POINT = (6.0, 100e3)
+FIELD_T_END, FIELD_TRANSIENT = 60.0, 30.0
 
 
 def builtin_scenario(name: str) -> Scenario:
@@ -267,6 +284,98 @@ def paper001(quick: bool = False) -> Paper001:
     return Paper001(fig7, laws, grid, time.perf_counter() - start)
 
 
+def field_rig(surface_speed: float = FIELD_POINT[0], weight_on_bit: float = FIELD_POINT[1]) -> "ds.StringRig":
+    """The demo's field string (see the module docstring, item 6) at (w_set [rad/s], W [N])."""
+    from . import Coulomb
+
+    return ds.StringRig(ds.field_string(2800.0, 200.0), Coulomb(0.2, 0.25), bit=ds.NavarroLopezBit(),
+                        weight_on_bit=weight_on_bit, elements=30, inclination=math.radians(60.0),
+                        damping_time=2e-3, surface_speed=surface_speed, torque_limit=8e4)
+
+
+@dataclass
+class FieldString:
+    """The field string's part of the demo: one stick-slip point over time and the stick-slip map."""
+
+    rig: "ds.StringRig"  #: at FIELD_POINT
+    result: "object"  #: its Result
+    measures: "ds.StickSlip"
+    map: "ds.StickSlipMap"
+    map_seconds: float  #: wall time of the map [s]
+
+    def time_series(self):
+        import pandas as pd
+
+        r, rig = self.result, self.rig
+        return pd.DataFrame({"t_s": r.t, "surface_speed_rad_s": ds.surface_speed(rig, r),
+                             "bit_speed_rad_s": ds.bit_speed(rig, r), "surface_torque_Nm": ds.surface_torque(rig, r),
+                             "bit_torque_Nm": ds.bit_torque(rig, r), "stuck_contacts": ds.stuck_contacts(r)})
+
+    def map_text(self) -> str:
+        """Rows W [kN], columns w_set: peak bit speed / w_set, * where the bit sticks."""
+        m = self.map
+        cells = [["W [kN] \\ w_set [rad/s]"] + [f"{w:g}" for w in m.surface_speeds]]
+        for j, weight in enumerate(m.weights_on_bit):
+            cells.append([f"{weight / 1e3:g}"] + ["failed" if m.failed[i, j] else
+                                                  ("*" if m.sticks[i, j] else " ") + f"{m.peak_ratio[i, j]:.2f}"
+                                                  for i in range(len(m.surface_speeds))])
+        widths = [max(len(r[k]) for r in cells) for k in range(len(cells[0]))]
+        return "\n".join("  ".join(v.ljust(widths[k]) if k == 0 else v.rjust(widths[k]) for k, v in enumerate(r))
+                         for r in cells)
+
+    def report(self, quick: bool) -> List[str]:
+        rig, m, x = self.rig, self.map, self.measures
+        return [
+            f"field string (issue 13): {rig.string.length:g} m (2800 m 5\" pipe + 200 m 6 1/2\" collars), 60 deg "
+            f"hole, {rig.elements} elements, Coulomb walls mu = 0.2 / mu_s = 0.25 at {len(rig.contact_nodes)} nodes, "
+            "PI top drive, Navarro-Lopez bit",
+            f"7. w_set = {rig.surface_speed:g} rad/s, W = {rig.weight_on_bit / 1e3:g} kN, {FIELD_T_END:g} s from rest "
+            f"({len(self.result.events)} switches): after {FIELD_TRANSIENT:g} s the bit peaks at "
+            f"{x.peak_ratio:.2f} w_set, averages {x.mean_ratio:.2f} w_set and is stuck {100 * x.stuck_fraction:.0f} % "
+            "of the time",
+            f"8. Stick-slip map: peak bit speed / w_set, * = the bit sticks after {FIELD_TRANSIENT:g} s "
+            f"({int(m.sticks.sum())} of {m.sticks.size} points; {m.sticks.size} simulations of {FIELD_T_END:g} s on "
+            f"{MAP_THREADS} threads in {self.map_seconds:.2f} s" + ("; --quick grid" if quick else "") + ")",
+            self.map_text(),
+        ]
+
+    def write(self, directory: Path) -> List[Path]:
+        """Write field_string/: time_series.csv, speeds.png, stick_slip_map.csv/.png."""
+        from . import plots
+
+        directory.mkdir(parents=True)
+        written = [directory / "time_series.csv", directory / "stick_slip_map.csv"]
+        self.time_series().to_csv(written[0], index=False, float_format="%.10g")
+        self.map.to_pandas().to_csv(written[1], index=False, float_format="%.10g")
+        rig = self.rig
+        written.append(plots.save(ds.speeds_figure(
+            rig, self.result, title=f"field string at w_set = {rig.surface_speed:g} rad/s, W = "
+                                    f"{rig.weight_on_bit / 1e3:g} kN: torsional stick-slip of the bit"),
+            directory / "speeds.png"))
+        written.append(plots.save(ds.stick_slip_map_figure(
+            self.map, title=f"field string, {FIELD_T_END:g} s from rest per point, measured after "
+                            f"{FIELD_TRANSIENT:g} s", point=FIELD_POINT), directory / "stick_slip_map.png"))
+        return written
+
+
+def field_string(quick: bool = False) -> FieldString:
+    """The field string's part of the demo (writes nothing)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from .simulation import simulate
+
+    rig = field_rig()
+    result = simulate(rig, FIELD_T_END, rtol=1e-6)
+    measures = ds.stick_slip(rig, result, FIELD_TRANSIENT)
+    speeds = QUICK_FIELD_SPEEDS if quick else FIELD_SPEEDS
+    weights = QUICK_FIELD_WEIGHTS if quick else FIELD_WEIGHTS
+    start = time.perf_counter()
+    with ThreadPoolExecutor(MAP_THREADS) as executor:
+        grid = ds.stick_slip_map(rig, speeds, weights, t_end=FIELD_T_END, transient=FIELD_TRANSIENT, rtol=1e-6,
+                                 executor=executor)
+    return FieldString(rig, result, measures, grid, time.perf_counter() - start)
+
+
 @dataclass
 class Demo:
     """Everything the demo computed; :meth:`report` is what it prints, :meth:`write` what it writes."""
@@ -276,6 +385,7 @@ class Demo:
     sweep: "object"  #: pandas DataFrame (friction_reduction.csv), reductions as fractions
     refit: "object"  #: pandas DataFrame (table5_refit.csv)
     paper001: Paper001
+    field: FieldString
     quick: bool
     elapsed: float  #: s of simulation and fitting
 
@@ -304,6 +414,8 @@ class Demo:
             "",
             *self.paper001.report(self.quick),
             "",
+            *self.field.report(self.quick),
+            "",
             f"simulated and fitted in {self.elapsed:.2f} s",
         ]
         return "\n".join(lines)
@@ -330,6 +442,7 @@ class Demo:
         written.append(plots.save(figure, directory / "friction_reduction.png"))
         written.append(write_fig11(directory))
         written += self.paper001.write(directory / "paper001")
+        written += self.field.write(directory / "field_string")
         return written
 
 
@@ -354,4 +467,5 @@ def compute(quick: bool = False) -> Demo:
     sweep = _sweep(fig7["fig7_dry"], QUICK_SWEEP_RATIOS if quick else SWEEP_RATIOS)
     refit = table5_refit()
     torsional = paper001(quick)
-    return Demo(fig7, reduction, sweep, refit, torsional, quick, time.perf_counter() - start)
+    field = field_string(quick)
+    return Demo(fig7, reduction, sweep, refit, torsional, field, quick, time.perf_counter() - start)

@@ -13,19 +13,22 @@ from . import _core
 from .errors import AccuracyWarning, InvalidParameterError, SimulationError
 from .result import Result
 
-__all__ = ["simulate", "METHODS", "SOLVER_DEFAULTS"]
+__all__ = ["simulate", "METHODS", "LINEAR_SOLVERS", "SOLVER_DEFAULTS"]
 
 #: Integrator names accepted by simulate(method=...).
 METHODS = ("automatic", "dormand_prince", "cvode_bdf", "cvode_adams")
+#: Linear solvers of CVODE BDF's Newton iteration accepted by simulate(linear_solver=...) (the engine's enum).
+LINEAR_SOLVERS = tuple(_core.LinearSolver.__members__)
 
-Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig", "_core.TorsionalRig"]
+Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig", "_core.TorsionalRig", "_core.StringRig"]
 
 #: The engine's defaults (C++ SolverOptions{}): every signature that offers solver options takes its defaults
 #: from here instead of restating them.
 SOLVER_DEFAULTS = _core.SolverOptions()
 
 
-def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float = SOLVER_DEFAULTS.rtol,
+def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
+             linear_solver: str = SOLVER_DEFAULTS.linear_solver.name, rtol: float = SOLVER_DEFAULTS.rtol,
              atol: float = SOLVER_DEFAULTS.atol, atol_per_state: Optional[Sequence[float]] = None,
              output_times: Optional[Sequence[float]] = None, record_steps: bool = SOLVER_DEFAULTS.record_steps,
              max_steps: int = SOLVER_DEFAULTS.max_steps, max_step: float = SOLVER_DEFAULTS.max_step,
@@ -41,11 +44,15 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
 
     Parameters
     ----------
-    rig : AxialVibrationRig, KinematicRig or TorsionalRig
+    rig : AxialVibrationRig, KinematicRig, TorsionalRig or StringRig
     t_end : float, s
     method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams"}
         "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
         (measured faster on these rigs, see the README).
+    linear_solver : {"automatic", "dense", "band", "sparse"}
+        The linear solver of CVODE BDF's Newton iteration: "automatic" is band LU where the rig declares a banded
+        Jacobian (a StringRig: its nodes couple only their neighbours), dense LU otherwise; "sparse" (KLU) only
+        where the extension was built with it.
     rtol, atol : float
         Relative and absolute tolerances (atol in the states' SI units). rtol must lie in [1e-14, 0.1] and atol
         be at least 1e-20; a result at rtol above 1e-3 carries an :class:`AccuracyWarning` (``Result.warnings``):
@@ -84,6 +91,10 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic", rtol: float =
         raise InvalidParameterError(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
     options = _core.SolverOptions()
     options.method = getattr(_core.Method, method)
+    if not isinstance(linear_solver, str) or linear_solver not in LINEAR_SOLVERS:
+        raise InvalidParameterError(f"linear_solver must be one of {', '.join(LINEAR_SOLVERS)} "
+                                    f"(got {linear_solver!r})", "linear_solver")
+    options.linear_solver = getattr(_core.LinearSolver, linear_solver)
     options.rtol = _real("rtol", rtol)
     options.atol = _real("atol", atol)
     if atol_per_state is not None:

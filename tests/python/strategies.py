@@ -32,9 +32,13 @@ class Param:
     held: Optional[float] = None  # tied to other keywords by a rule the table does not state: always this, not mutated
 
 
-#: Typical values of terms that the engine's example leaves off (0) but the runs should exercise, N s/m. Every
-#: other term that is off by default (a Karnopp band, which the kinematic rig refuses) is drawn off.
-_TYPICAL_WHEN_OFF = {"viscous_coefficient": (1e-3, 10.0), "viscous_damping": (1e-3, 10.0)}
+#: Typical values of terms that the engine's example leaves off (0) but the runs should exercise: viscous terms
+#: [N s/m], and a string rig's hole inclination [rad], structural damping [s] and BHA [kg m^2, kg]. Every other
+#: term that is off by default (a Karnopp band, which the kinematic rig refuses; a string's hoisting and excitation)
+#: is drawn off.
+_TYPICAL_WHEN_OFF = {"viscous_coefficient": (1e-3, 10.0), "viscous_damping": (1e-3, 10.0),
+                     "inclination": (0.05, 1.5), "damping_time": (1e-4, 1e-2), "end_inertia": (1.0, 100.0),
+                     "end_mass": (1e3, 3e4)}
 
 
 def _typical(record: Any, base: Any) -> Tuple[float, float]:
@@ -55,9 +59,9 @@ def _typical(record: Any, base: Any) -> Tuple[float, float]:
     return low, high
 
 
-def _law_params(law: type) -> Dict[str, Param]:
+def _law_params(law: type, tied_by_construction: bool = True) -> Dict[str, Param]:
     records = {r.name: r for r in law.parameters}
-    tied = tied_parameters(law)
+    tied = tied_parameters(law) if tied_by_construction else frozenset()
     return {name: Param((r.lower, r.upper), _typical(r, records.get(r.at_least) if r.at_least else None),
                         open_low=r.lower_open, open_high=r.upper_open, at_least=r.at_least or None,
                         unset_ok=r.unset_allowed, held=r.example if name in tied else None)
@@ -65,6 +69,12 @@ def _law_params(law: type) -> Dict[str, Param]:
 
 
 LAWS: Dict[type, Dict[str, Param]] = {law: _law_params(law) for law in fs.FRICTION_LAWS}
+#: The drill-string tables (issue 13), read the same way: a pipe section's, the bit law's and the string rig's
+#: (built from its keywords alone, a section or a rig has no rule across them that a nudge would find; the rules
+#: across tables, ID < OD and mud lighter than steel, are the tests' to check).
+TABLES: Dict[type, Dict[str, Param]] = {fs.NavarroLopezBit: _law_params(fs.NavarroLopezBit),
+                                        fs.PipeSection: _law_params(fs.PipeSection, tied_by_construction=False),
+                                        fs.StringRig: _law_params(fs.StringRig, tied_by_construction=False)}
 
 _SOLVER = fs._core.SolverOptions
 #: simulate() options: rule and typical values
@@ -103,8 +113,8 @@ def any_number() -> st.SearchStrategy:
 def law_kwargs(draw, law: type, mutate: bool) -> Dict[str, float]:
     """Typical keywords of ``law`` (a keyword bounded by another drawn as that one plus an excess, so mu_static >=
     mu); with ``mutate``, one of them replaced by any number (not NaN where NaN means "unset": valid by design, but
-    not by the properties' mu_static >= mu check)."""
-    params = LAWS[law]
+    not by the properties' mu_static >= mu check). Any class of LAWS or TABLES."""
+    params = LAWS[law] if law in LAWS else TABLES[law]
     kwargs: Dict[str, float] = {}
     for name, p in params.items():
         if p.held is not None:
@@ -120,3 +130,8 @@ def law_kwargs(draw, law: type, mutate: bool) -> Dict[str, float]:
         numbers = any_number()
         kwargs[name] = draw(numbers.filter(lambda x: not math.isnan(x)) if params[name].unset_ok else numbers)
     return kwargs
+
+
+def table_kwargs(cls: type, mutate: bool) -> st.SearchStrategy:
+    """law_kwargs for the classes of TABLES (the drill-string tables)."""
+    return law_kwargs(cls, mutate)

@@ -36,6 +36,15 @@ key by key, unless the case changes ``type``, in which case the default table is
     motor_viscous_coefficient C_m [N m s/rad], proportional_gain k_p [V s/rad], integral_gain k_i [V/rad],
     reference_speed w_ref [rad/s], normal_force N2 [N], contact_radius r [m], initial_disc_speed [rad/s],
     initial_drive_speed [rad/s]; all optional. A file's cases are either all torsional or none.
+    ``type = "drillstring"``: a field-scale string (:class:`frictionsim.StringRig`): ``sections`` (required), an
+    array of tables top to bottom with the :class:`frictionsim.PipeSection` keys (outer_diameter, inner_diameter,
+    length [m], youngs_modulus, shear_modulus [Pa], density [kg/m^3]); ``bit``, a table of
+    :class:`frictionsim.NavarroLopezBit` keys, with ``weight_on_bit`` [N] (no bit: off bottom); and the StringRig
+    keywords (damping_time [s], surface_speed [rad/s], proportional_gain, integral_gain, torque_limit [N m],
+    inclination [rad], mud_density [kg/m^3], ..., elements, top_drive ("pi_motor" or "prescribed_speed"), axial,
+    hoisting, wall_contacts, contact_nodes, normal_forces [N], excitation_node). The friction law acts at every
+    wall contact. A file's cases are either all drill strings or none
+    (:class:`frictionsim.scenario.rigs.DrillStringKind`).
 ``friction``
     ``type`` = "coulomb" | "stribeck" | "dahl" | "lugre" | "elasto_plastic" and the constructor's parameters by
     name (:class:`frictionsim.Coulomb` ...): mu, mu_static, stribeck_velocity [m/s], shape_exponent,
@@ -61,12 +70,17 @@ key by key, unless the case changes ``type``, in which case the default table is
     it counts as stuck). Summary: frequency [Hz], period [s], peak / trough / mean disc speed [rad/s], peak / w_ref,
     stick fraction, mean friction torque [N m] over the whole cycles measured (see
     :class:`frictionsim.scenario.rigs.Torsional`).
+    Drill strings: transient [s] (default t_end / 2) after which the bit's stick-slip is measured (peak and mean
+    bit speed over w_set, the share of the time the bit is stuck), and optionally surface_speeds [rad/s] and
+    weights_on_bit [N], the grid of a stick-slip map (one run of the case's rig from rest per point;
+    ``stick_slip_map_<case>.csv``).
 ``output`` (top level only)
     directory (relative to the scenario file's folder, which it may not leave: no absolute path, no ``..`` or
     symbolic link out of it, unless ``frictionsim run --allow-outside``; ignored when ``--out`` is given; default
     ``out/<file stem>`` in the working directory), tables (subset of
     ["timeseries", "summary"]), plots (subset of ["friction_force", "hysteresis", "drive_force"]; torsional
-    rigs: of ["disc_speed", "friction_torque_hysteresis", "phase_portrait"]), plot_window = [t_start, t_end] [s]
+    rigs: of ["disc_speed", "friction_torque_hysteresis", "phase_portrait"]; drill strings: of ["bit_speed",
+    "stick_slip_map"]), plot_window = [t_start, t_end] [s]
     (default: the last 3 vibration cycles; torsional: the last 10 s for disc_speed, [transient, t_end] for the
     others). The time series of a torsional case has t, the rig's states (disc_speed, drive_speed, shaft_twist,
     current, ...), disc_acceleration, friction_torque, shaft_torque, voltage and mode.
@@ -81,22 +95,24 @@ own rules reject non-physical values), and the averaging window is checked again
 
 The package: :mod:`~frictionsim.scenario.parser` (TOML to specs, every rule and error), :mod:`~.specs` (the
 dataclasses), :mod:`~.rigs` (the registry :data:`RIG_KINDS`: one :class:`RigKind` per rig type, with its keys,
-builder, time series, plots and own friction types), :mod:`~.analyses` (mean friction over cycles, limit cycle)
+builder, time series, plots and own friction types), :mod:`~.analyses` (mean friction over cycles, limit cycle,
+a drill string's stick-slip)
 and :mod:`~.runner` (running cases, writing CSV and PNG files).
 """
 
 from __future__ import annotations
 
-from .analyses import CaseRun, LimitCycleRun
+from .analyses import CaseRun, LimitCycleRun, StringRun
 from .parser import (MAX_DATA_FILE_BYTES, MAX_DESCRIPTION_CHARACTERS, MAX_OUTPUT_POINTS, MAX_TITLE_CHARACTERS,
                      ScenarioError, load, loads, parse)
-from .rigs import PLOTS, RIG_KINDS, TORSIONAL_PLOTS, RigKind, friction_types, rig_kind
+from .rigs import PLOTS, RIG_KINDS, STRING_PLOTS, TORSIONAL_PLOTS, RigKind, friction_types, rig_kind
 from .runner import ScenarioRun, run, run_case
 from .specs import TABLES, AnalysisSpec, Case, FrictionSpec, OutputSpec, RigSpec, Scenario, SolverSpec
 
 __all__ = [
     "AnalysisSpec", "Case", "CaseRun", "FrictionSpec", "LimitCycleRun", "MAX_DATA_FILE_BYTES",
     "MAX_DESCRIPTION_CHARACTERS", "MAX_OUTPUT_POINTS", "MAX_TITLE_CHARACTERS", "OutputSpec", "PLOTS", "RIG_KINDS",
-    "RigKind", "RigSpec", "Scenario", "ScenarioError", "ScenarioRun", "SolverSpec", "TABLES", "TORSIONAL_PLOTS",
+    "RigKind", "RigSpec", "Scenario", "ScenarioError", "ScenarioRun", "SolverSpec", "STRING_PLOTS", "StringRun",
+    "TABLES", "TORSIONAL_PLOTS",
     "friction_types", "load", "loads", "parse", "rig_kind", "run", "run_case",
 ]

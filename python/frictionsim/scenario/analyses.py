@@ -9,6 +9,10 @@ summaries and plots differ), and its ``[analysis]`` keys are the analysis's:
   (:func:`frictionsim.torsional.limit_cycle`), :class:`LimitCycleRun`; plots of disc speed, friction-torque
   hysteresis and the disc's phase portrait (documented with the torsional rig kind,
   :class:`frictionsim.scenario.rigs.Torsional`).
+* :data:`STICK_SLIP` (drill strings, :class:`frictionsim.StringRig`): the bit's stick-slip after the transient
+  (:func:`frictionsim.drillstring.stick_slip`) and, where asked, the stick-slip map over surface speed and weight on
+  bit (:func:`frictionsim.drillstring.stick_slip_map`), :class:`StringRun`; plots of bit and surface speed and
+  torque, and of the map.
 """
 
 from __future__ import annotations
@@ -25,7 +29,8 @@ from .. import _core
 from ..errors import InvalidParameterError
 from .text import article, join
 
-__all__ = ["Analysis", "CYCLE_MEAN", "CaseRun", "CycleMean", "LIMIT_CYCLE", "LimitCycle", "LimitCycleRun"]
+__all__ = ["Analysis", "CYCLE_MEAN", "CaseRun", "CycleMean", "LIMIT_CYCLE", "LimitCycle", "LimitCycleRun",
+           "STICK_SLIP", "StickSlipAnalysis", "StringRun"]
 
 Window = Optional[Tuple[float, float]]
 
@@ -144,6 +149,37 @@ class LimitCycleRun(_Run):
         }
 
 
+@dataclass
+class StringRun(_Run):
+    """A simulated drill-string case: the :class:`frictionsim.Result`, the rig, the bit's stick-slip after the
+    transient (:class:`frictionsim.drillstring.StickSlip`) and the stick-slip map where one was asked for."""
+
+    stick_slip: Any  #: frictionsim.drillstring.StickSlip
+    map: Any  #: frictionsim.drillstring.StickSlipMap or None
+    wall_time: float  #: s
+
+    @property
+    def normal_force(self) -> float:
+        """The sum of the wall contacts' normal forces [N]."""
+        return float(np.sum(self.rig.normal_forces))
+
+    def summary(self) -> Dict[str, Any]:
+        """One summary row: set speed, weight on bit, peak / mean bit speed over w_set, the bit's stuck fraction,
+        the surface speed's peak over w_set, the stuck wall contacts at the end, and the run's counters."""
+        m, rig = self.stick_slip, self.rig
+        return {
+            "case": self.case.name, "law": self.case.friction.label, "rig": self.case.rig.type,
+            "surface_speed_rad_s": float(rig.surface_speed),
+            "weight_on_bit_N": float(rig.weight_on_bit) if rig.weight_on_bit is not None else math.nan,
+            "elements": int(rig.elements), "wall_contacts": len(rig.contact_nodes),
+            "wall_normal_force_N": self.normal_force, "bit_sticks": bool(m.sticks), "peak_ratio": m.peak_ratio,
+            "mean_ratio": m.mean_ratio, "bit_stuck_fraction": m.stuck_fraction,
+            "surface_peak_ratio": m.surface_peak_ratio, "stuck_contacts_end": int(self.result.mode[-1]),
+            "transient_s": STICK_SLIP.transient(self.case), "events": len(self.result.events),
+            "steps": int(self.result.stats["steps"]), "t_end_s": self.case.solver.t_end,
+        }
+
+
 # -------------------------------------------------------------------------------------------------- analyses
 class Analysis(abc.ABC):
     """What a scenario's ``[analysis]`` takes (:attr:`keys`), how it is checked, what a run measures, which summary
@@ -190,6 +226,10 @@ class Analysis(abc.ABC):
     def write_plots(self, runs: Sequence[Any], traces: Sequence, wanted: Sequence[str], directory: Path, *,
                     title: str, plot_window: Window) -> List[Path]:
         """Write the PNGs of ``wanted`` into ``directory``; ``traces`` are (label, timeseries) per run."""
+
+    def write_tables(self, runs: Sequence[Any], directory: Path) -> List[Path]:
+        """CSV tables of the analysis beyond the time series and the summary (written with the summary)."""
+        return []
 
 
 class CycleMean(Analysis):
@@ -328,5 +368,105 @@ class LimitCycle(Analysis):
         return [plots.save(makers[plot](plot_window or windows[plot]), directory / f"{plot}.png") for plot in wanted]
 
 
+class StickSlipAnalysis(Analysis):
+    """A drill string's stick-slip at the bit after ``transient`` [s] (default t_end / 2), and where
+    ``surface_speeds`` [rad/s] and ``weights_on_bit`` [N] are given, its stick-slip map over that grid (each point a
+    run of the case's rig from rest, as long as the case's)."""
+
+    keys = {"transient": float, "surface_speeds": list, "weights_on_bit": list}
+    SUMMARY_COLUMNS = [("case", "case", "s"), ("law", "law", "s"), ("surface_speed_rad_s", "w_set [rad/s]", ".4g"),
+                       ("weight_on_bit_N", "W [N]", ".4g"), ("elements", "N", "d"),
+                       ("peak_ratio", "peak bit / w_set", ".3f"), ("mean_ratio", "mean bit / w_set", ".3f"),
+                       ("bit_stuck_fraction", "bit stuck", ".3f"), ("surface_peak_ratio", "peak top / w_set", ".3f"),
+                       ("events", "events", "d"), ("steps", "steps", "d")]
+    summary_note = ("bit speed after the transient against the set surface speed w_set: peak and time mean, and the "
+                    "share of the time the bit is stuck (exactly at rest)")
+    TIME_SERIES_WINDOW = 30.0  #: s: the default window of the bit_speed plot ends at t_end
+
+    def unknown_note(self, kind) -> str:
+        return f" for {article(kind.name)} {kind.name} rig (its stick-slip)"
+
+    def plots_note(self, kinds: Sequence[str]) -> str:
+        return f" for {' / '.join(kinds)} rigs"
+
+    @staticmethod
+    def transient(case) -> float:
+        """The start [s] of the measures: analysis.transient, else t_end / 2."""
+        a = case.analysis
+        return float(a.transient) if a.transient is not None else 0.5 * case.solver.t_end
+
+    def check(self, parser, case, paths: Mapping[str, str]) -> None:
+        a, t_end = case.analysis, case.solver.t_end
+        if a.transient is not None and not (math.isfinite(a.transient) and 0.0 <= a.transient < t_end):
+            raise parser.error(paths["transient"], f"must be >= 0 and < t_end = {t_end:g} s (got {a.transient:g})")
+        grid = {key: getattr(a, key) for key in ("surface_speeds", "weights_on_bit")}
+        given = [key for key, value in grid.items() if value is not None]
+        if len(given) == 1:
+            missing = next(key for key in grid if key not in given)
+            raise parser.error(join(paths["_section"], missing), f"missing required value: a stick-slip map needs "
+                                                                 f"both surface_speeds and weights_on_bit")
+        for key in given:
+            values = grid[key]
+            if not values:
+                raise parser.error(paths[key], "must hold at least one value")
+            for i, value in enumerate(values):
+                if not (math.isfinite(value) and value > 0.0):
+                    raise parser.error(f"{paths[key]}[{i + 1}]", f"must be positive and finite (got {value:g})")
+        if given and "bit" not in case.rig.params:
+            raise parser.error(paths[given[0]], "a stick-slip map needs a bit on bottom (give rig.bit and "
+                                                "rig.weight_on_bit)")
+
+    def window(self, case) -> Tuple[float, float, int]:
+        raise ValueError(f"a {case.rig.type} case has no vibration period: its stick-slip is measured after the run")
+
+    def measure(self, case, rig, result, wall_time: float) -> StringRun:
+        from concurrent.futures import ThreadPoolExecutor
+
+        from .. import drillstring as ds
+
+        transient = self.transient(case)
+        measures = ds.stick_slip(rig, result, transient)
+        grid = None
+        a = case.analysis
+        if a.surface_speeds is not None:
+            with ThreadPoolExecutor(2) as executor:  # the engine releases the GIL: the points run in parallel
+                grid = ds.stick_slip_map(rig, a.surface_speeds, a.weights_on_bit, t_end=case.solver.t_end,
+                                         transient=transient, rtol=case.solver.rtol, executor=executor)
+        return StringRun(case, rig, result, measures, grid, wall_time)
+
+    def summary_columns(self, summary) -> List[Tuple[str, str, str]]:
+        return list(self.SUMMARY_COLUMNS)
+
+    def write_tables(self, runs, directory: Path) -> List[Path]:
+        """stick_slip_map_<case>.csv of every case with a map."""
+        written = []
+        for run in runs:
+            if run.map is not None:
+                written.append(directory / f"stick_slip_map_{run.case.name}.csv")
+                run.map.to_pandas().to_csv(written[-1], index=False, float_format="%.10g")
+        return written
+
+    def write_plots(self, runs, traces, wanted, directory, *, title, plot_window):
+        from .. import drillstring as ds
+        from .. import plots
+
+        t_end = min(run.case.solver.t_end for run in runs)
+        window = plot_window or (max(0.0, t_end - self.TIME_SERIES_WINDOW), t_end)
+        written = []
+        if "bit_speed" in wanted:
+            figure = ds.speeds_panels_figure([(label, run.rig, run.result) for (label, _), run in zip(traces, runs)],
+                                             title=title, window=window)
+            written.append(plots.save(figure, directory / "bit_speed.png"))
+        if "stick_slip_map" in wanted:
+            for run in runs:
+                if run.map is not None:
+                    figure = ds.stick_slip_map_figure(run.map, title=f"{title}: {run.case.name}",
+                                                      point=(float(run.rig.surface_speed),
+                                                             float(run.rig.weight_on_bit)))
+                    written.append(plots.save(figure, directory / f"stick_slip_map_{run.case.name}.png"))
+        return written
+
+
 CYCLE_MEAN = CycleMean()
 LIMIT_CYCLE = LimitCycle()
+STICK_SLIP = StickSlipAnalysis()

@@ -111,7 +111,7 @@ class _Parser:
                 raise self.error(path, f"must be an integer (got {type_name(value)} {value!r})")
             return value
         if not isinstance(value, kind) or (kind is not bool and isinstance(value, bool)):
-            wanted = {bool: "a boolean (true or false)", str: "a string", list: "an array"}[kind]
+            wanted = {bool: "a boolean (true or false)", str: "a string", list: "an array", dict: "a table"}[kind]
             raise self.error(path, f"must be {wanted} (got {type_name(value)} {value!r})")
         return value
 
@@ -378,6 +378,8 @@ class _Parser:
                 raise self.error(key_path, f"unknown key{kind.analysis.unknown_note(kind)} "
                                            f"(allowed: {', '.join(keys)})")
             values[key], paths[key] = self.value(value, keys[key], key_path), key_path
+            if keys[key] is list:  # an analysis's arrays are of numbers (a drill string's map grid)
+                values[key] = self.numbers(value, None, "", key_path)
         if "stick_speed" in values:
             self.positive(values["stick_speed"], paths["stick_speed"])
         if "period" in values:

@@ -20,12 +20,13 @@ from typing import Any, Callable, Dict, Mapping, Optional, Tuple
 import numpy as np
 
 from .. import _core, laws
+from ..errors import InvalidParameterError
 from ..torsional import fig7_friction
-from .analyses import CYCLE_MEAN, LIMIT_CYCLE, Analysis
+from .analyses import CYCLE_MEAN, LIMIT_CYCLE, STICK_SLIP, Analysis
 from .text import article, join
 
-__all__ = ["LawKind", "PLOTS", "RIG_KINDS", "RigKind", "TORSIONAL_PLOTS", "friction_type", "friction_types",
-           "plots_of", "rig_kind"]
+__all__ = ["DrillStringKind", "LawKind", "PLOTS", "RIG_KINDS", "RigKind", "STRING_PLOTS", "TORSIONAL_PLOTS",
+           "friction_type", "friction_types", "plots_of", "rig_kind"]
 
 
 @dataclass(frozen=True)
@@ -260,8 +261,97 @@ class Torsional(RigKind):
                 "voltage": np.asarray(rig.voltage(r.states), dtype=float)}
 
 
+class DrillStringKind(RigKind):
+    """A field-scale drill string (:class:`frictionsim.StringRig`), ``rig.type = "drillstring"``.
+
+    * rig keys: ``sections``, an array of tables top to bottom, each with the :class:`~frictionsim.PipeSection`
+      keys (outer_diameter, inner_diameter, length [m], youngs_modulus, shear_modulus [Pa], density [kg/m^3]);
+      ``bit``, a table of :class:`~frictionsim.NavarroLopezBit` keys (bit_radius [m], coulomb_coefficient,
+      static_coefficient, weakening_rate, velocity_scale [rad/s], viscous_damping [N m s/rad], stick_band [rad/s])
+      with ``weight_on_bit`` [N] (without ``bit`` the bit hangs off bottom); and the StringRig keywords: the
+      table's (damping_time, surface_speed, proportional_gain, inclination, ...) and elements, top_drive,
+      axial, hoisting, wall_contacts, contact_nodes, normal_forces, excitation_node;
+    * friction: the wall contacts' law, any engine law (coulomb, stribeck, dahl, lugre, ...);
+    * analysis: the bit's stick-slip after ``transient`` [s] (default t_end / 2) and, with ``surface_speeds``
+      [rad/s] and ``weights_on_bit`` [N], the stick-slip map over that grid
+      (:data:`frictionsim.scenario.analyses.STICK_SLIP`);
+    * time series: t, the states (theta_i, omega_i per node, the work integrals), wall_friction_torque,
+      surface_torque, bit_torque [N m], stuck_contacts, mode.
+
+    Plots: ``bit_speed`` (bit and surface speed against time, one panel per case; default window: the last 30 s)
+    and ``stick_slip_map`` (one per case with a map: peak bit speed / w_set and the bit's stuck fraction).
+    """
+
+    name, engine, analysis = "drillstring", _core.StringRig, STICK_SLIP
+    plots = ("bit_speed", "stick_slip_map")
+
+    @functools.cached_property
+    def keys(self) -> Dict[str, type]:
+        keys: Dict[str, type] = {"sections": list}
+        for p in laws.parameters(self.engine, ("self", "string", "friction")):
+            keys[p.name] = dict if p.name == "bit" else list if p.kind is tuple else p.kind
+        return keys
+
+    @functools.cached_property
+    def defaults(self) -> Dict[str, Any]:
+        return {p.name: p.default for p in laws.parameters(self.engine, ("self", "string", "friction"))}
+
+    def _table(self, parser, value, cls, path: str, paths: Dict[str, str]):
+        """A table of ``cls``'s keys (a PipeSection or the bit), checked by building it."""
+        table = parser.table(value, path)
+        names = [p.name for p in cls.parameters]
+        parser.unknown(table, names, path)
+        numbers = {key: parser.value(v, float, join(path, key)) for key, v in table.items()}
+        try:
+            cls(**numbers)
+        except InvalidParameterError as error:
+            raise parser.engine(error, {key: join(path, key) for key in numbers}, path) from None
+        return numbers
+
+    def check(self, parser, params, paths, path):
+        if "sections" not in params:
+            raise parser.error(join(path, "sections"), "missing required value: the string's sections, top to "
+                                                       "bottom (an array of tables of PipeSection keys)")
+        sections = params["sections"]
+        if not sections:
+            raise parser.error(paths["sections"], "must hold at least one section")
+        params["sections"] = tuple(self._table(parser, section, _core.PipeSection, f"{paths['sections']}[{i + 1}]",
+                                               paths) for i, section in enumerate(sections))
+        if "bit" in params:
+            params["bit"] = self._table(parser, params["bit"], _core.NavarroLopezBit, paths["bit"], paths)
+            if "weight_on_bit" not in params:
+                raise parser.error(join(path, "weight_on_bit"), "missing required value with a bit on bottom (N)")
+        elif "weight_on_bit" in params:
+            raise parser.error(paths["weight_on_bit"], "needs a bit (give rig.bit; without it the bit is off "
+                                                       "bottom)")
+        for key, kind in (("contact_nodes", int), ("normal_forces", float)):
+            if key in params:
+                params[key] = tuple(parser.value(v, kind, f"{paths[key]}[{i + 1}]")
+                                    for i, v in enumerate(params[key]))
+        return None
+
+    def build(self, spec, friction):
+        params = dict(spec.params)
+        string = _core.DrillString([_core.PipeSection(**section) for section in params.pop("sections")])
+        if "bit" in params:
+            params["bit"] = _core.NavarroLopezBit(**params["bit"])
+        return self.engine(string, friction, **params)
+
+    def describe(self, spec) -> str:
+        return "a drillstring rig"
+
+    def columns(self, run) -> Dict[str, np.ndarray]:
+        """wall_friction_torque (the Result's friction_force: the sum over the wall contacts), surface_torque,
+        bit_torque [N m] (:mod:`frictionsim.drillstring`), stuck_contacts."""
+        from .. import drillstring as ds
+
+        r, rig = run.result, run.rig
+        return {"wall_friction_torque": r.friction_force, "surface_torque": ds.surface_torque(rig, r),
+                "bit_torque": ds.bit_torque(rig, r), "stuck_contacts": ds.stuck_contacts(r)}
+
+
 #: rig.type -> its kind, in the order the schema lists them
-RIG_KINDS: Dict[str, RigKind] = {kind.name: kind for kind in (Axial(), Kinematic(), Torsional())}
+RIG_KINDS: Dict[str, RigKind] = {kind.name: kind for kind in (Axial(), Kinematic(), Torsional(), DrillStringKind())}
 
 
 def rig_kind(name: str) -> RigKind:
@@ -292,6 +382,7 @@ def plots_of(analysis: Analysis) -> Tuple[str, ...]:
                                for plot in kind.plots))
 
 
-#: The plots of axial and kinematic rigs, and of torsional ones.
+#: The plots of axial and kinematic rigs, of torsional ones, and of drill strings.
 PLOTS = plots_of(CYCLE_MEAN)
 TORSIONAL_PLOTS = plots_of(LIMIT_CYCLE)
+STRING_PLOTS = plots_of(STICK_SLIP)

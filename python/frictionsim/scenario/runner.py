@@ -76,6 +76,7 @@ class ScenarioRun:
         if "summary" in output.tables:
             written.append(directory / "summary.csv")
             self.summary().to_csv(written[-1], index=False, float_format="%.10g")
+            written += self.analysis.write_tables(self.runs, directory)
         if self.scenario.text is not None and all(c.rig.samples is None for c in self.scenario.cases):
             # what was run, re-runnable with `frictionsim run` (not with a relative velocity_file: it would move)
             written.append(directory / "scenario.toml")

@@ -94,12 +94,16 @@ class SolverSpec:
 @dataclass(frozen=True)
 class AnalysisSpec:
     """Averaging window: transient [s], cycles, period [s]; torsional rigs: transient [s] and stick_speed
-    [rad/s] of the limit cycle (None: see the module docstring)."""
+    [rad/s] of the limit cycle; drill strings: transient [s] and the stick-slip map's grid (None: see the module
+    docstring)."""
 
     transient: Optional[float] = None
     cycles: Optional[int] = None
     period: Optional[float] = None
     stick_speed: Optional[float] = None
+    #: drill strings: the stick-slip map's grid, w_set [rad/s] x weight on bit [N] (None: no map)
+    surface_speeds: Optional[Tuple[float, ...]] = None
+    weights_on_bit: Optional[Tuple[float, ...]] = None
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,594 @@
+// Field-scale drill strings for Python (issue 13, item 3): fs.PipeSection and fs.DrillString (geometry and its
+// lumped model), fs.NavarroLopezBit (the velocity-weakening bit law, through bind_law) and fs.StringRig, the
+// event-driven string of drillstring/string_rig.hpp. The rig is held as one instantiation per wall law of
+// PythonLaws and per bit (off bottom, or the velocity-weakening bit under a weight on bit): 2 x 7 alternatives,
+// no virtual call in the right-hand side. Keywords, properties, repr, pickling and the docstring come from the
+// tables (PipeSection::fields, StringRigParams::fields, NavarroLopezBit::fields).
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <frictionsim/drillstring/string_rig.hpp>
+
+#include "law_binding.hpp"
+#include "simulation.hpp"
+
+namespace frictionsim::python {
+
+namespace {
+
+constexpr const char* rig_name = "StringRig";
+constexpr auto section_fields = PipeSection::fields();
+constexpr auto rig_fields = StringRigParams::fields();
+/// More elements than any string needs (a 6 km string at 1 m): a guard against a typo allocating gigabytes.
+constexpr long max_elements = 100000;
+
+template <class Law> using OffBottomRig = StringRig<Law, OffBottom>;
+template <class Law> using OnBottomRig = StringRig<Law, VelocityWeakeningBit>;
+
+/// std::variant<StringRig<L, OffBottom>..., StringRig<L, VelocityWeakeningBit>...> over the laws of a list.
+template <class Laws>
+struct string_rig_variant;
+template <class... L>
+struct string_rig_variant<TypeList<L...>> {
+    using type = std::variant<OffBottomRig<L>..., OnBottomRig<L>...>;
+};
+using StringRigVariant = string_rig_variant<PythonLaws>::type;
+
+const char* top_drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
+const char* hoisting_name(Hoisting h) { return h == Hoisting::hook_speed ? "hook_speed" : "hook_load"; }
+
+std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
+
+/// A real number (not a bool or a string), or a TypeError naming the keyword.
+double real_from(py::handle value, const char* keyword) {
+    if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || !py::hasattr(value, "__float__"))
+        throw py::type_error(std::string(rig_name) + ": " + keyword + " must be a number (got " + type_name(value) +
+                             ")");
+    return value.attr("__float__")().cast<double>();
+}
+
+/// A whole number in [low, high] (Python int or NumPy integer, not a bool), or an InvalidParameter naming it.
+std::size_t count_from(py::handle value, const char* keyword, long low, long high) {
+    if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__index__"))
+        throw py::type_error(std::string(rig_name) + ": " + keyword + " must be a whole number (got " +
+                             type_name(value) + ")");
+    const long v = value.attr("__index__")().cast<long>();
+    if (v < low || v > high)
+        throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " must be in [" + std::to_string(low) +
+                                            ", " + std::to_string(high) + "] (got " + std::to_string(v) + ")");
+    return static_cast<std::size_t>(v);
+}
+
+bool flag_from(py::handle value, const char* keyword) {
+    if (!py::isinstance<py::bool_>(value) && type_name(value) != "bool_")
+        throw py::type_error(std::string(rig_name) + ": " + keyword + " must be True or False (got " +
+                             type_name(value) + ")");
+    return py::bool_(py::reinterpret_borrow<py::object>(value));
+}
+
+std::string choice_from(py::handle value, const char* keyword, const char* a, const char* b) {
+    const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
+    if (s != a && s != b)
+        throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " must be '" + a + "' or '" + b +
+                                            "' (got " + std::string(py::repr(value)) + ")");
+    return s;
+}
+
+/// The table's keywords of `P` from kwargs (unknown keywords left to the caller), validated with the owner's name.
+template <class P, std::size_t N>
+P table_from_kwargs(const py::kwargs& kwargs, const std::array<Field<P>, N>& fields, const char* owner,
+                    std::size_t& used) {
+    P p{};
+    used = read_field_keywords(p, kwargs, fields, owner);
+    return p;
+}
+
+/// "__init__(self, <positional>, *, <table keywords>, <extras>) -> None": the signature help() and the stub show.
+template <class P, std::size_t N>
+std::string table_signature(const std::string& positional, const std::array<Field<P>, N>& fields,
+                            const std::string& extras) {
+    const P defaults{};
+    std::string s = "__init__(self" + positional + ", *";
+    for (const Field<P>& f : fields)
+        s += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
+    return s + extras + ") -> None\n";
+}
+
+template <class P, std::size_t N>
+[[noreturn]] void refuse_unknown_keyword(const py::kwargs& kwargs, const std::array<Field<P>, N>& fields,
+                                         const std::vector<const char*>& extras, const char* owner) {
+    for (auto item : kwargs) {
+        const std::string key = py::str(item.first);
+        bool known = false;
+        for (const Field<P>& f : fields) known = known || key == f.public_name();
+        for (const char* x : extras) known = known || key == x;
+        if (!known) throw py::type_error(std::string(owner) + "() got an unexpected keyword argument '" + key + "'");
+    }
+    throw py::type_error(std::string(owner) + "(): an unexpected keyword argument");
+}
+
+// ---- PipeSection, DrillString ------------------------------------------------------------------------------------
+
+PipeSection checked_section(const PipeSection& s, const char* owner) {
+    validate_fields(owner, s, section_fields);
+    if (!(s.inner_diameter < s.outer_diameter))
+        detail::reject(owner, "inner_diameter", "< outer_diameter (a tube has a wall)", s.inner_diameter);
+    return s;
+}
+
+std::string section_repr(const PipeSection& s) {
+    std::string out = "PipeSection(";
+    bool first = true;
+    for (const Field<PipeSection>& f : section_fields) {
+        out += (first ? "" : ", ") + std::string(f.public_name()) + "=" + format_double(s.*(f.member));
+        first = false;
+    }
+    return out + ")";
+}
+
+DrillString string_from(py::handle sections) {
+    if (py::isinstance<py::str>(sections) || !py::isinstance<py::sequence>(sections))
+        throw py::type_error("DrillString: sections must be a sequence of PipeSection (got " + type_name(sections) +
+                             ")");
+    std::vector<PipeSection> out;
+    for (py::handle s : sections) {
+        require_constructed(s);
+        if (!py::isinstance<PipeSection>(s))
+            throw py::type_error("DrillString: sections must hold PipeSection objects (got " + type_name(s) + ")");
+        out.push_back(s.cast<PipeSection>());
+    }
+    return DrillString(std::move(out));
+}
+
+template <class T>
+py::array_t<T> to_array(const std::vector<T>& v) {
+    return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+// ---- StringRig ---------------------------------------------------------------------------------------------------
+
+/// The Python StringRig: what it was built from (for properties, repr and pickling) and the rig itself.
+struct BoundStringRig {
+    DrillString string;
+    FrictionLaw friction;
+    std::optional<NavarroLopezBit> bit;
+    double weight_on_bit = 0.0;
+    StringRigParams params;
+    StringRigSetup setup;  ///< as given: empty contact_nodes / normal_forces mean "the rig's defaults"
+    bool contact_nodes_given = false, normal_forces_given = false;
+    StringRigVariant rig;
+
+    BoundStringRig(DrillString s, FrictionLaw law, std::optional<NavarroLopezBit> b, double wob,
+                   const StringRigParams& p, StringRigSetup setup_in, bool nodes_given, bool forces_given)
+        : string(std::move(s)), friction(std::move(law)), bit(std::move(b)), weight_on_bit(wob), params(p),
+          setup(std::move(setup_in)), contact_nodes_given(nodes_given), normal_forces_given(forces_given),
+          rig(build()) {}
+
+    template <class F>
+    decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), rig); }
+
+private:
+    StringRigVariant build() const {
+        return std::visit(
+            [&](auto law) -> StringRigVariant {
+                using Law = decltype(law);
+                if (bit) return OnBottomRig<Law>(string, params, setup, std::move(law),
+                                                 VelocityWeakeningBit(*bit, weight_on_bit));
+                return OffBottomRig<Law>(string, params, setup, std::move(law));
+            },
+            friction);
+    }
+};
+
+const std::vector<const char*> rig_extras{"bit",           "weight_on_bit", "elements",      "top_drive",
+                                          "axial",         "hoisting",      "wall_contacts", "contact_nodes",
+                                          "normal_forces", "excitation_node"};
+
+BoundStringRig make_string_rig(py::handle string, py::handle friction, const py::kwargs& kwargs) {
+    require_constructed(string);
+    if (!py::isinstance<DrillString>(string))
+        throw py::type_error(std::string(rig_name) + ": string must be a DrillString (got " + type_name(string) + ")");
+    std::size_t used = 0;
+    StringRigParams p = table_from_kwargs(kwargs, rig_fields, rig_name, used);
+    StringRigSetup setup;
+    std::optional<NavarroLopezBit> bit;
+    std::optional<double> wob;
+    bool nodes_given = false, forces_given = false;
+    const auto given = [&](const char* key) {
+        if (!kwargs.contains(key)) return false;
+        ++used;
+        return !kwargs[key].is_none();
+    };
+    if (given("bit")) {
+        const py::handle b = kwargs["bit"];
+        require_constructed(b);
+        if (!py::isinstance<NavarroLopezBit>(b))
+            throw py::type_error(std::string(rig_name) + ": bit must be a NavarroLopezBit or None (off bottom), got " +
+                                 type_name(b));
+        bit = b.cast<NavarroLopezBit>();
+    }
+    if (given("weight_on_bit")) wob = real_from(kwargs["weight_on_bit"], "weight_on_bit");
+    if (given("elements"))
+        setup.elements = count_from(kwargs["elements"], "elements", 1, max_elements);
+    if (given("top_drive"))
+        setup.top_drive = choice_from(kwargs["top_drive"], "top_drive", "pi_motor", "prescribed_speed") == "pi_motor"
+                              ? TopDrive::pi_motor
+                              : TopDrive::prescribed_speed;
+    if (given("axial")) setup.axial = flag_from(kwargs["axial"], "axial");
+    if (given("hoisting"))
+        setup.hoisting = choice_from(kwargs["hoisting"], "hoisting", "hook_speed", "hook_load") == "hook_speed"
+                             ? Hoisting::hook_speed
+                             : Hoisting::hook_load;
+    if (given("wall_contacts")) setup.wall_contacts = flag_from(kwargs["wall_contacts"], "wall_contacts");
+    if (given("contact_nodes")) {
+        nodes_given = true;
+        const py::handle v = kwargs["contact_nodes"];
+        if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v))
+            throw py::type_error(std::string(rig_name) + ": contact_nodes must be a sequence of node numbers (got " +
+                                 type_name(v) + ")");
+        for (py::handle node : v) setup.contact_nodes.push_back(count_from(node, "contact_nodes", 0, max_elements));
+        if (setup.contact_nodes.empty())
+            throw InvalidParameter("contact_nodes", std::string(rig_name) +
+                                                        ": contact_nodes must name at least one node (None: every "
+                                                        "node; wall_contacts=False: none)");
+    }
+    if (given("normal_forces")) {
+        forces_given = true;
+        const py::handle v = kwargs["normal_forces"];
+        if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v))
+            throw py::type_error(std::string(rig_name) + ": normal_forces must be a sequence of forces in N (got " +
+                                 type_name(v) + ")");
+        for (py::handle f : v) setup.normal_forces.push_back(real_from(f, "normal_forces"));
+        if (setup.normal_forces.empty())
+            throw InvalidParameter("normal_forces", std::string(rig_name) +
+                                                        ": normal_forces must hold one force per contact node (None: "
+                                                        "the inclined hole's buoyed weight)");
+    }
+    if (given("excitation_node"))
+        setup.excitation_node = count_from(kwargs["excitation_node"], "excitation_node", 0, max_elements);
+    if (used != kwargs.size()) refuse_unknown_keyword(kwargs, rig_fields, rig_extras, rig_name);
+    if (bit && !wob)
+        throw InvalidParameter("weight_on_bit", std::string(rig_name) +
+                                                    ": weight_on_bit must be given (N) with a bit on bottom");
+    if (!bit && wob)
+        throw InvalidParameter("weight_on_bit", std::string(rig_name) +
+                                                    ": weight_on_bit needs a bit (bit=None: the bit is off bottom)");
+    return BoundStringRig(string.cast<DrillString>(), friction_law_from_python(friction, "friction"), bit,
+                          wob.value_or(0.0), p, setup, nodes_given, forces_given);
+}
+
+py::dict rig_extras_of(const BoundStringRig& r) {
+    py::dict d;
+    d["bit"] = r.bit ? py::cast(*r.bit) : py::none();
+    d["weight_on_bit"] = r.bit ? py::cast(r.weight_on_bit) : py::none();
+    d["elements"] = r.setup.elements;
+    d["top_drive"] = top_drive_name(r.setup.top_drive);
+    d["axial"] = r.setup.axial;
+    d["hoisting"] = hoisting_name(r.setup.hoisting);
+    d["wall_contacts"] = r.setup.wall_contacts;
+    d["contact_nodes"] = r.contact_nodes_given ? py::cast(r.setup.contact_nodes) : py::none();
+    d["normal_forces"] = r.normal_forces_given ? py::cast(r.setup.normal_forces) : py::none();
+    d["excitation_node"] = r.setup.excitation_node;
+    return d;
+}
+
+/// A node number in 0..N, or an InvalidParameter naming `keyword`.
+std::size_t node_of(const BoundStringRig& r, long node, const char* keyword) {
+    const auto n = static_cast<long>(r.setup.elements);
+    if (node < 0 || node > n)
+        throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " must be in 0.." + std::to_string(n) +
+                                            " (got " + std::to_string(node) + ")");
+    return static_cast<std::size_t>(node);
+}
+
+using StatesArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// f(rig, t, x, mode) for every row of a (rows, states) array at times t, with the mode each row's state implies
+/// (the rig's initial_mode: exact stick shows as zero speed, the drive's limit as the PI torque beyond it).
+template <class F>
+py::array_t<double> per_row(const BoundStringRig& r, StatesArray t, StatesArray states, F&& f) {
+    const std::size_t n = r.visit([](const auto& s) { return s.state_size(); });
+    if (states.ndim() != 2 || static_cast<std::size_t>(states.shape(1)) != n)
+        throw InvalidParameter("states", "states must be an array of shape (rows, " + std::to_string(n) + ")");
+    const auto rows = static_cast<std::size_t>(states.shape(0));
+    if (t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != rows)
+        throw InvalidParameter("t", "t must hold one time per row of states");
+    py::array_t<double> out(static_cast<py::ssize_t>(rows));
+    auto o = out.mutable_unchecked<1>();
+    const double* x = states.data();
+    const double* time = t.data();
+    r.visit([&](const auto& s) {
+        for (std::size_t k = 0; k < rows; ++k) {
+            const double* row = x + k * n;
+            o(static_cast<py::ssize_t>(k)) = f(s, time[k], row, s.initial_mode(time[k], row));
+        }
+    });
+    return out;
+}
+
+const char* const rig_description = R"doc(
+A drill string on the event-driven engine (drillstring/string_rig.hpp): the lumped string of a DrillString (N
+elements of equal length, node 0 at the top, node N at the bit), in torsion and optionally axially:
+
+    J_i w_i' = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
+    m_i v_i' = F_i - F_{i-1} + w_b,i cos I [- H at node 0] [+ F_x sin(2 pi f_x t) at excitation_node] - F_wall,i [- W]
+    tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e)   (and the same for F_e with E A / dx)
+
+Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
++-T_max) with anti-windup, or a prescribed surface speed. A wall contact at each chosen node with `friction` (any
+law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
+inclined hole's buoyed weight w_b sin I. Torsion-only: exact per-contact stick; axial=True: friction against the
+resultant of axial and circumferential sliding (paper 000's friction vector). The bit: None (off bottom) or a
+NavarroLopezBit under weight_on_bit W [N] on node N (velocity weakening, exact stick).
+
+Parameters
+----------
+string : DrillString
+friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw) of the wall contacts
+bit : NavarroLopezBit or None
+    None: the bit hangs off bottom (node N may carry a wall contact).
+weight_on_bit : float or None
+    W [N], required with a bit.
+elements : int = 20
+    N.
+top_drive : {"pi_motor", "prescribed_speed"}
+axial : bool = False
+    Also the axial motion (u_i, v_i per node).
+hoisting : {"hook_speed", "hook_load"}
+    The axial top boundary (with axial=True).
+wall_contacts : bool = True
+    False: no wall contact at all.
+contact_nodes : sequence of int or None
+    Nodes with a wall contact, increasing, in 1..N (below N with the bit on bottom). None: every such node.
+normal_forces : sequence of float or None
+    One normal force [N] per contact node. None: w_b sin(inclination) per node.
+excitation_node : int = 0
+    Node of the axial excitation F_x sin(2 pi f_x t).
+
+States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
+law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
+wall_friction_work, damping_work, bit_work (drive + hoist + excitation = energy change + friction + damping + bit).
+The Result's friction_force is the total wall friction torque [N m]; its mode counts the stuck wall contacts.
+frictionsim.drillstring reads bit and surface speed, surface torque and stuck contacts out of a Result.
+
+Keywords
+--------
+)doc";
+
+}  // namespace
+
+py::object register_drillstring(py::module_& m) {
+    // the constructors read their keywords off the tables: their signatures are written from the tables too
+    py::options options;
+
+    // ---- PipeSection
+    py::class_<PipeSection> section(m, "PipeSection", kept(R"doc(
+One section of a drill string: a steel tube (drill pipe, heavy-weight pipe, collars). All keywords optional;
+defaults: 5" drill pipe (OD 127 mm, ID 108.6 mm), 100 m, steel. SI units; ID < OD.
+
+Keywords
+--------
+)doc" + keywords_doc(section_fields)));
+    def_field_properties(section, section_fields, [](const PipeSection& s) -> const PipeSection& { return s; });
+    options.disable_function_signatures();
+    section
+        .def(py::init([](const py::kwargs& kwargs) {
+                 std::size_t used = 0;
+                 const PipeSection s = table_from_kwargs(kwargs, section_fields, "PipeSection", used);
+                 if (used != kwargs.size()) refuse_unknown_keyword(kwargs, section_fields, {}, "PipeSection");
+                 return checked_section(s, "PipeSection");
+             }),
+             kept(table_signature("", section_fields, "") +
+                  "\nThe section's geometry and steel by keyword (see the class docstring).\n"));
+    options.enable_function_signatures();
+    section
+        .def_property_readonly("area", &PipeSection::area, "A = pi (OD^2 - ID^2) / 4 [m^2].")
+        .def_property_readonly("polar_moment", &PipeSection::polar_moment, "I_p = pi (OD^4 - ID^4) / 32 [m^4].")
+        .def_property_readonly("torsional_rigidity", &PipeSection::torsional_rigidity, "G I_p [N m^2/rad].")
+        .def_property_readonly("axial_rigidity", &PipeSection::axial_rigidity, "E A [N].")
+        .def_property_readonly("inertia_per_length", &PipeSection::inertia_per_length, "rho I_p [kg m].")
+        .def_property_readonly("mass_per_length", &PipeSection::mass_per_length, "rho A [kg/m].")
+        .def("__repr__", &section_repr)
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(), field_keywords(self.cast<const PipeSection&>(),
+                                                                            section_fields));
+        });
+
+    // ---- DrillString
+    py::class_<DrillString> string(m, "DrillString", R"doc(
+A drill string as its sections, top to bottom (a sequence of PipeSection), and its lumped model.
+
+lump(elements) gives N elements of equal length dx = L / N, each a torsional spring G I_p / dx and an axial spring
+E A / dx between two nodes, each element's inertia rho I_p dx and mass rho A dx split half to each node; an element
+across a section boundary takes each section's share (compliances in series).
+)doc");
+    options.disable_function_signatures();
+    string.def(py::init([](py::handle sections) { return string_from(sections); }),
+               "__init__(self, sections: collections.abc.Sequence[PipeSection]) -> None\n\nSections top to bottom.\n",
+               py::arg("sections"));
+    options.enable_function_signatures();
+    string
+        .def_property_readonly("sections", [](const DrillString& s) { return s.sections(); },
+                               "The sections, top to bottom (copies).")
+        .def_property_readonly("length", &DrillString::length, "Total length L [m].")
+        .def("lump", [](const DrillString& s, long elements) {
+                 if (elements < 1 || elements > max_elements)
+                     throw InvalidParameter("elements", "DrillString: elements must be in [1, " +
+                                                            std::to_string(max_elements) + "] (got " +
+                                                            std::to_string(elements) + ")");
+                 const LumpedString l = s.lump(static_cast<std::size_t>(elements));
+                 py::dict d;
+                 d["element_length"] = l.element_length;
+                 d["node_inertia"] = to_array(l.node_inertia);
+                 d["node_mass"] = to_array(l.node_mass);
+                 d["torsional_stiffness"] = to_array(l.torsional_stiffness);
+                 d["axial_stiffness"] = to_array(l.axial_stiffness);
+                 return d;
+             },
+             "The lumped string of N = elements: "
+             "element_length dx [m], node_inertia J_i [kg m^2] and node_mass m_i [kg] (N + 1 nodes), "
+             "torsional_stiffness [N m/rad] and axial_stiffness [N/m] (N springs).",
+             py::arg("elements"))
+        .def("__len__", [](const DrillString& s) { return s.sections().size(); })
+        .def("__repr__", [](const DrillString& s) {
+            std::string out = "DrillString([";
+            for (std::size_t i = 0; i < s.sections().size(); ++i)
+                out += (i ? ", " : "") + section_repr(s.sections()[i]);
+            return out + "])";
+        })
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::make_tuple(py::cast(self.cast<const DrillString&>().sections())));
+        });
+
+    // ---- NavarroLopezBit: a law table like the wall laws', bound by the same template
+    auto bit = bind_law<NavarroLopezBit>(m);
+    bit.attr("__doc__") = kept(R"doc(Velocity-weakening bit friction of Navarro-Lopez & Cortes (2007, Sec. 2):
+
+    T_b(w) = c_b w + R_b W mu_b(w) sign(w),  mu_b(w) = mu_cb + (mu_sb - mu_cb) exp(-gamma_b |w| / v_f)   (slip)
+    |T_b| <= R_b W mu_sb                                                                              (stick)
+
+with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's parameter set.
+)doc" + std::string(py::str(bit.attr("__doc__"))));
+    bit.def("coefficient", py::vectorize([](NavarroLopezBit& b, double w) { return b.coefficient(w); }),
+            py::arg("angular_speed"), "mu_b(w) [-] at bit speed w [rad/s] (arrays broadcast).")
+        .def("torque", py::vectorize([](NavarroLopezBit& b, double w, double weight) {
+                 if (!(std::isfinite(weight) && weight >= 0.0))
+                     throw InvalidParameter("weight_on_bit", "NavarroLopezBit: weight_on_bit must be >= 0 and finite");
+                 return b.torque(w, weight, w > 0.0 ? 1 : w < 0.0 ? -1 : 0);
+             }),
+             py::arg("angular_speed"), py::arg("weight_on_bit"),
+             "Slip torque T_b [N m] at bit speed w [rad/s] under weight on bit W [N] (0 at w = 0: the stuck bit's "
+             "torque is whatever holds it, within static_limit).")
+        .def("static_limit", py::vectorize([](NavarroLopezBit& b, double weight) { return b.static_limit(weight); }),
+             py::arg("weight_on_bit"), "R_b W mu_sb [N m]: the largest torque the stuck bit holds.");
+
+    // ---- StringRig
+    py::class_<BoundStringRig> cls(m, rig_name, kept(rig_description + keywords_doc(rig_fields)));
+    def_field_properties(cls, rig_fields, [](const BoundStringRig& r) -> const StringRigParams& { return r.params; });
+    const std::string extras_signature =
+        ", bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, "
+        "top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, "
+        "contact_nodes: collections.abc.Sequence[int] | None = None, "
+        "normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0";
+    options.disable_function_signatures();
+    cls.def(py::init([](py::handle s, py::handle friction, const py::kwargs& kwargs) {
+                return make_string_rig(s, friction, kwargs);
+            }),
+            kept(table_signature(", string: DrillString, friction: object", rig_fields, extras_signature) +
+                 "\nThe string, the wall law, then the rig's set-up and parameters by keyword (see the class "
+                 "docstring).\n"),
+            py::arg("string"), py::arg("friction"));
+    options.enable_function_signatures();
+    cls.def_property_readonly("string", [](const BoundStringRig& r) { return r.string; }, "The DrillString.")
+        .def_property_readonly("friction", [](const BoundStringRig& r) { return friction_law_to_python(r.friction); },
+                               "The wall contacts' friction law.")
+        .def_property_readonly("bit", [](const BoundStringRig& r) { return r.bit ? py::cast(*r.bit) : py::none(); },
+                               "The bit law (NavarroLopezBit), or None off bottom.")
+        .def_property_readonly("weight_on_bit",
+                               [](const BoundStringRig& r) { return r.bit ? py::cast(r.weight_on_bit) : py::none(); },
+                               "W [N], or None off bottom.")
+        .def_property_readonly("on_bottom", [](const BoundStringRig& r) { return r.bit.has_value(); })
+        .def_property_readonly("elements", [](const BoundStringRig& r) { return r.setup.elements; }, "N.")
+        .def_property_readonly("top_drive", [](const BoundStringRig& r) { return top_drive_name(r.setup.top_drive); })
+        .def_property_readonly("axial", [](const BoundStringRig& r) { return r.setup.axial; })
+        .def_property_readonly("hoisting", [](const BoundStringRig& r) { return hoisting_name(r.setup.hoisting); })
+        .def_property_readonly("wall_contacts", [](const BoundStringRig& r) { return r.setup.wall_contacts; })
+        .def_property_readonly("excitation_node", [](const BoundStringRig& r) { return r.setup.excitation_node; })
+        .def_property_readonly("contact_nodes",
+                               [](const BoundStringRig& r) {
+                                   return r.visit([](const auto& s) { return s.contact_nodes(); });
+                               },
+                               "The nodes with a wall contact (as the rig placed them).")
+        .def_property_readonly("normal_forces",
+                               [](const BoundStringRig& r) {
+                                   return to_array(r.visit([](const auto& s) { return s.normal_forces(); }));
+                               },
+                               "The normal force of each contact [N], in contact_nodes order.")
+        .def_property_readonly("node_radius",
+                               [](const BoundStringRig& r) {
+                                   return to_array(r.visit([](const auto& s) { return s.node_radius(); }));
+                               },
+                               "Contact radius of each node [m] (the larger OD on a section boundary).")
+        .def_property_readonly("node_inertia",
+                               [](const BoundStringRig& r) {
+                                   return to_array(r.visit([](const auto& s) { return s.node_inertia(); }));
+                               },
+                               "J_i [kg m^2] of each node (with J_td at node 0 under PI control, J_end at node N).")
+        .def_property_readonly("node_mass",
+                               [](const BoundStringRig& r) {
+                                   return to_array(r.visit([](const auto& s) { return s.node_mass(); }));
+                               },
+                               "m_i [kg] of each node (with m_end at node N).")
+        .def_property_readonly("period", [](const BoundStringRig&) { return py::none(); },
+                               "None: a string has no imposed period (its stick-slip period is an outcome).")
+        .def_property_readonly("state_names", [](const BoundStringRig& r) {
+            return r.visit([](const auto& s) { return s.state_names(); });
+        })
+        .def("theta_index", [](const BoundStringRig& r, long node) {
+                 return r.visit([&](const auto& s) { return s.theta(node_of(r, node, "node")); });
+             },
+             "Column of theta_node [rad] in the states.", py::arg("node"))
+        .def("omega_index", [](const BoundStringRig& r, long node) {
+                 return r.visit([&](const auto& s) { return s.omega(node_of(r, node, "node")); });
+             },
+             "Column of omega_node [rad/s] in the states.", py::arg("node"))
+        .def("work_index", [](const BoundStringRig& r) { return r.visit([](const auto& s) { return s.work_offset(); }); },
+             "Column of drive_work, the first of the six work integrals.")
+        .def("surface_torque", [](const BoundStringRig& r, StatesArray t, StatesArray states) {
+                 return per_row(r, t, states, [](const auto& s, double time, const double* x, const ContactModes& md) {
+                     return s.surface_torque(time, x, md);
+                 });
+             },
+             "The torque the "
+             "surface applies [N m] at each row (t [s], states (rows, states)): the motor's under PI control, what "
+             "holds the prescribed speed otherwise.",
+             py::arg("t"), py::arg("states"))
+        .def("bit_torque", [](const BoundStringRig& r, StatesArray t, StatesArray states) {
+                 return per_row(r, t, states, [](const auto& s, double time, const double* x, const ContactModes& md) {
+                     return s.bit_torque(time, x, md);
+                 });
+             },
+             "The torque on bit "
+             "[N m] at each row (0 off bottom; the holding torque while the bit sticks).",
+             py::arg("t"), py::arg("states"))
+        .def("_simulate", [](const BoundStringRig& r, double t_end, const SolverOptions& o, double t_start) {
+                 return simulate_variant(r.rig, t_end, o, t_start);
+             },
+             py::arg("t_end"), py::arg("options"), py::arg("t_start"))
+        .def("__reduce__", [](py::handle self) {
+            const auto& r = self.cast<const BoundStringRig&>();
+            py::dict kwargs = field_keywords(r.params, rig_fields);
+            for (auto item : rig_extras_of(r)) kwargs[item.first] = item.second;
+            return reduce_by_construction(self, py::make_tuple(py::cast(r.string), friction_law_to_python(r.friction)),
+                                          kwargs);
+        })
+        .def("__repr__", [](const BoundStringRig& r) {
+            std::string out = std::string(rig_name) + "(" + std::string(py::repr(py::cast(r.string))) +
+                              ", friction=" + std::string(py::repr(friction_law_to_python(r.friction)));
+            const StringRigSetup defaults;
+            for (auto item : rig_extras_of(r)) {
+                const std::string key = py::str(item.first);
+                const py::handle v = item.second;
+                if (v.is_none()) continue;
+                if (key == "elements" && r.setup.elements == defaults.elements) continue;
+                if (key == "top_drive" && r.setup.top_drive == defaults.top_drive) continue;
+                if (key == "axial" && r.setup.axial == defaults.axial) continue;
+                if (key == "hoisting" && r.setup.hoisting == defaults.hoisting) continue;
+                if (key == "wall_contacts" && r.setup.wall_contacts == defaults.wall_contacts) continue;
+                if (key == "excitation_node" && r.setup.excitation_node == defaults.excitation_node) continue;
+                out += ", " + key + "=" + std::string(py::repr(v));
+            }
+            return out + changed_fields_repr(r.params, rig_fields) + ")";
+        });
+    return std::move(cls);
+}
+
+}  // namespace frictionsim::python

@@ -1,0 +1,285 @@
+"""Field-scale drill strings: what a run of a :class:`frictionsim.StringRig` gives.
+
+The model is C++ (``include/frictionsim/drillstring/string_rig.hpp``): :class:`~frictionsim.PipeSection`,
+:class:`~frictionsim.DrillString`, :class:`~frictionsim.NavarroLopezBit` and :class:`~frictionsim.StringRig`.
+This module reads a :class:`~frictionsim.Result` of one by the rig's own state layout (``rig.omega_index``, the
+rig's ``surface_torque`` / ``bit_torque``), so no column arithmetic is repeated here, and measures stick-slip
+the way a stick-slip map needs it.
+
+    >>> import frictionsim as fs
+    >>> from frictionsim import drillstring as ds
+    >>> rig = fs.StringRig(ds.field_string(), fs.Coulomb(0.2, 0.3), bit=fs.NavarroLopezBit(), weight_on_bit=1e5,
+    ...                    elements=30, inclination=1.047, surface_speed=6.0)
+    >>> result = fs.simulate(rig, 60.0)
+    >>> ds.stick_slip(rig, result, transient=20.0).sticks
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Any, Dict, Optional, Sequence
+
+import numpy as np
+
+from ._core import DrillString, NavarroLopezBit, PipeSection, StringRig
+from .result import Result
+
+__all__ = [
+    "DrillString",
+    "NavarroLopezBit",
+    "PipeSection",
+    "StickSlip",
+    "StickSlipMap",
+    "StringRig",
+    "bit_speed",
+    "bit_torque",
+    "field_string",
+    "replace",
+    "stick_slip",
+    "stick_slip_map",
+    "stick_slip_point",
+    "stuck_contacts",
+    "surface_speed",
+    "surface_torque",
+]
+
+#: 5" drill pipe (19.5 lb/ft: OD 127 mm, ID 108.6 mm) and 6 1/2" x 2 13/16" drill collars, steel.
+DRILL_PIPE = dict(outer_diameter=0.127, inner_diameter=0.1086)
+DRILL_COLLAR = dict(outer_diameter=0.1651, inner_diameter=0.0714)
+
+
+def field_string(pipe_length: float = 2800.0, collar_length: float = 200.0) -> DrillString:
+    """A field string: ``pipe_length`` [m] of 5" drill pipe above ``collar_length`` [m] of 6 1/2" collars."""
+    return DrillString([PipeSection(length=pipe_length, **DRILL_PIPE),
+                        PipeSection(length=collar_length, **DRILL_COLLAR)])
+
+
+def bit_speed(rig: StringRig, result: Result) -> np.ndarray:
+    """Bit speed [rad/s] (node N's) at each row of ``result``."""
+    return result.states[:, rig.omega_index(rig.elements)]
+
+
+def surface_speed(rig: StringRig, result: Result) -> np.ndarray:
+    """Surface (top-drive) speed [rad/s] (node 0's) at each row."""
+    return result.states[:, rig.omega_index(0)]
+
+
+#: Speeds [rad/s] read as "at rest" when a row's contact modes are rebuilt from its state (the Result records how
+#: many contacts stick, not which): a row at a located switch carries the crossing a few 1e-11 rad/s past zero,
+#: and a bit breaking away dips by ~1e-8 rad/s before its torque turns it forwards; the sign of either would pick
+#: the wrong slip branch. Torques read at rest differ from the slip law's there by c_b * AT_REST at most.
+AT_REST = 1e-6
+
+
+def _states_at_rest(rig: StringRig, result: Result) -> np.ndarray:
+    states = np.array(result.states)
+    columns = [rig.omega_index(node) for node in (*rig.contact_nodes, rig.elements)]
+    block = states[:, columns]
+    block[np.abs(block) < AT_REST] = 0.0
+    states[:, columns] = block
+    return states
+
+
+def surface_torque(rig: StringRig, result: Result) -> np.ndarray:
+    """Torque the surface applies [N m] at each row: the motor's under PI control (limit included), what holds
+    the prescribed speed otherwise."""
+    return rig.surface_torque(result.t, _states_at_rest(rig, result))
+
+
+def bit_torque(rig: StringRig, result: Result) -> np.ndarray:
+    """Torque on bit [N m] at each row (0 off bottom; the holding torque while the bit sticks: the mode of each
+    row is rebuilt from its state, speeds below :data:`AT_REST` counting as zero)."""
+    return rig.bit_torque(result.t, _states_at_rest(rig, result))
+
+
+def stuck_contacts(result: Result) -> np.ndarray:
+    """How many wall contacts stick at each row (a StringRig's Result mode column counts them)."""
+    return np.asarray(result.mode)
+
+
+@dataclass(frozen=True)
+class StickSlip:
+    """Stick-slip measures of one run after its transient, bit speed against the set surface speed w_set.
+
+    peak_ratio, mean_ratio : max and time-mean of the bit speed over w_set
+    stuck_fraction : fraction of the time the bit is stuck (bit speed exactly 0: the engine's stick is exact)
+    sticks : the bit stuck at least once (full stick-slip)
+    surface_peak_ratio : max surface speed over w_set (the PI drive's overshoot)
+    """
+
+    peak_ratio: float
+    mean_ratio: float
+    stuck_fraction: float
+    sticks: bool
+    surface_peak_ratio: float
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def stick_slip(rig: StringRig, result: Result, transient: float = 0.0) -> StickSlip:
+    """The stick-slip measures of ``result`` over t >= ``transient`` [s] (see :class:`StickSlip`)."""
+    t = np.asarray(result.t)
+    keep = t >= transient
+    if np.count_nonzero(keep) < 2:
+        raise ValueError(f"stick_slip: fewer than two rows after transient = {transient} s (the run ends at "
+                         f"{t[-1] if len(t) else 0.0} s)")
+    w_set = rig.surface_speed
+    if not w_set > 0.0:
+        raise ValueError(f"stick_slip: the rig's surface_speed must be positive (got {w_set})")
+    t, bit, top = t[keep], bit_speed(rig, result)[keep], surface_speed(rig, result)[keep]
+    dt = np.diff(t)
+    span = t[-1] - t[0]
+    mean = float(np.sum(0.5 * (bit[1:] + bit[:-1]) * dt) / span)
+    stuck = (bit[1:] == 0.0) & (bit[:-1] == 0.0)
+    stuck_fraction = float(np.sum(dt[stuck]) / span)
+    return StickSlip(peak_ratio=float(np.max(bit) / w_set), mean_ratio=mean / w_set, stuck_fraction=stuck_fraction,
+                     sticks=bool(np.any(bit == 0.0)), surface_peak_ratio=float(np.max(top) / w_set))
+
+
+def replace(rig: StringRig, **changes: Any) -> StringRig:
+    """A copy of ``rig`` with some constructor keywords changed (``surface_speed=...``, ``weight_on_bit=...``),
+    built through the constructor as unpickling builds it, so it is checked the same way."""
+    rebuild, (cls, args, kwargs, factory) = rig.__reduce__()
+    unknown = set(changes) - set(kwargs)
+    if unknown:
+        raise TypeError(f"replace: StringRig has no keyword {', '.join(sorted(unknown))}")
+    return rebuild(cls, args, {**kwargs, **changes}, factory)
+
+
+def stick_slip_point(*, rig: StringRig, surface_speed: float, weight_on_bit: float, t_end: float,
+                     transient: float, rtol: float = 1e-6) -> Dict[str, float]:
+    """One point of :func:`stick_slip_map`: ``rig`` at (w_set [rad/s], W [N]) from rest, its :class:`StickSlip`
+    after ``transient`` as a dict of floats (top-level and picklable, for process pools and dask)."""
+    from .simulation import simulate
+
+    point = replace(rig, surface_speed=surface_speed, weight_on_bit=weight_on_bit)
+    values = stick_slip(point, simulate(point, t_end, rtol=rtol), transient).as_dict()
+    values["sticks"] = float(values["sticks"])
+    return values
+
+
+@dataclass(frozen=True)
+class StickSlipMap:
+    """A string's stick-slip over a (surface speed, weight on bit) grid: arrays of shape (len(surface_speeds),
+    len(weights_on_bit)) of the :class:`StickSlip` measures; sticks True where the bit sticks after the transient;
+    failed True where the run failed (NaN in the float arrays, False in sticks)."""
+
+    surface_speeds: np.ndarray
+    weights_on_bit: np.ndarray
+    sticks: np.ndarray
+    peak_ratio: np.ndarray
+    mean_ratio: np.ndarray
+    stuck_fraction: np.ndarray
+    surface_peak_ratio: np.ndarray
+    failed: np.ndarray
+    sweep: Any
+
+    def to_pandas(self):
+        return self.sweep.to_pandas()
+
+
+def stick_slip_map(rig: StringRig, surface_speeds: Sequence[float], weights_on_bit: Sequence[float], *,
+                   t_end: float = 60.0, transient: float = 30.0, rtol: float = 1e-6, executor: Any = None,
+                   progress: bool = False, errors: str = "collect") -> StickSlipMap:
+    """Where does the string stick-slip? ``rig`` (on bottom) run from rest at every (w_set, W) point of the grid
+    through :func:`frictionsim.sweep` (threads run in parallel: the engine releases the GIL)."""
+    from .sweeps import sweep
+
+    if rig.bit is None:
+        raise ValueError("stick_slip_map: the rig must have a bit on bottom (bit=NavarroLopezBit(...))")
+    speeds = np.asarray(surface_speeds, dtype=float).ravel()
+    weights = np.asarray(weights_on_bit, dtype=float).ravel()
+    for name, values in (("surface_speeds", speeds), ("weights_on_bit", weights)):
+        if values.size == 0 or not np.all(np.isfinite(values)) or np.any(values <= 0):
+            raise ValueError(f"{name} must be a non-empty sequence of positive finite values (got {values!r})")
+    if not 0.0 <= transient < t_end:
+        raise ValueError(f"stick_slip_map: transient must lie in [0, t_end) (got {transient} and {t_end})")
+    result = sweep(stick_slip_point, {"surface_speed": list(speeds), "weight_on_bit": list(weights)},
+                   fixed=dict(rig=rig, t_end=t_end, transient=transient, rtol=rtol), executor=executor,
+                   progress=progress, errors=errors)
+    failed = np.zeros(result.grid_shape, dtype=bool)
+    failed.flat[result.failed] = True
+    return StickSlipMap(speeds, weights, result.as_array("sticks") > 0.5, result.as_array("peak_ratio"),
+                        result.as_array("mean_ratio"), result.as_array("stuck_fraction"),
+                        result.as_array("surface_peak_ratio"), failed, result)
+
+
+# ---------------------------------------------------------------------------------------------- plots
+def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Optional[tuple] = None):
+    """One panel per (label, rig, result): bit and surface speed [rad/s] against t [s] within ``window``."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(10.0, 2.0 + 2.4 * len(items)), layout="constrained")
+    axes = np.atleast_1d(figure.subplots(len(items), 1, sharex=True, squeeze=False)[:, 0])
+    for ax, (label, rig, result) in zip(axes, items):
+        t = result.t
+        inside = (t >= window[0]) & (t <= window[1]) if window is not None else np.ones(len(t), bool)
+        ax.plot(t[inside], surface_speed(rig, result)[inside], color="tab:blue", lw=1.0, label="surface")
+        ax.plot(t[inside], bit_speed(rig, result)[inside], color="tab:red", lw=1.0, label="bit")
+        ax.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label="set speed")
+        ax.set_ylabel("speed [rad/s]")
+        ax.set_title(label, fontsize=9)
+        ax.legend(fontsize=8, loc="upper right")
+    axes[-1].set_xlabel("t [s]")
+    figure.suptitle((title + "\n" if title else "") + "bit and surface speed of the drill string", fontsize=10)
+    return figure
+
+
+def speeds_figure(rig: StringRig, result: Result, *, title: str = ""):
+    """Bit and surface speed [rad/s] over time (top), surface and bit torque [kN m] (bottom)."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(10.0, 6.5), layout="constrained")
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    t = result.t
+    top.plot(t, surface_speed(rig, result), color="tab:blue", lw=1.0, label="surface (top drive)")
+    top.plot(t, bit_speed(rig, result), color="tab:red", lw=1.0, label="bit")
+    top.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label=f"set speed {rig.surface_speed:g} rad/s")
+    top.set_ylabel("speed [rad/s]")
+    top.legend(fontsize=8, loc="upper right")
+    bottom.plot(t, surface_torque(rig, result) / 1e3, color="tab:blue", lw=1.0, label="surface torque")
+    bottom.plot(t, bit_torque(rig, result) / 1e3, color="tab:red", lw=1.0, label="torque on bit")
+    bottom.set_xlabel("t [s]")
+    bottom.set_ylabel("torque [kN m]")
+    bottom.legend(fontsize=8, loc="upper right")
+    figure.suptitle(title or "drill string: bit and surface speed", fontsize=10)
+    return figure
+
+
+def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None):
+    """Peak bit speed / w_set (left) and the bit's stuck fraction (right) over (w_set, W [kN]); a black dot where
+    the bit sticks, a red cross where the run failed, a star at ``point`` (w_set, W [N])."""
+    from matplotlib.figure import Figure
+
+    speeds, weights = m.surface_speeds, m.weights_on_bit / 1e3
+
+    def edges(v):
+        if v.size == 1:
+            return np.array([v[0] * 0.9, v[0] * 1.1])
+        mid = 0.5 * (v[1:] + v[:-1])
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+    figure = Figure(figsize=(13.0, 5.2), layout="constrained")
+    axes = figure.subplots(1, 2)
+    xx, yy = np.meshgrid(speeds, weights, indexing="ij")
+    for ax, (values, label, cmap) in zip(axes, [(m.peak_ratio, "peak bit speed / $\\omega_{set}$ [-]", "viridis"),
+                                                 (m.stuck_fraction, "fraction of time the bit is stuck", "magma")]):
+        mesh = ax.pcolormesh(edges(speeds), edges(weights), np.asarray(values, float).T, cmap=cmap, shading="flat")
+        figure.colorbar(mesh, ax=ax, label=label)
+        for (i, j), value in np.ndenumerate(values):
+            if np.isfinite(value):
+                ax.annotate(f"{value:.2f}", (speeds[i], weights[j]), textcoords="offset points", xytext=(0, -11),
+                            ha="center", fontsize=7, color="w" if value < np.nanmean(values) else "k")
+        ax.plot(xx[m.sticks], yy[m.sticks], "o", color="k", markersize=4, linestyle="none", label="bit sticks")
+        if m.failed.any():
+            ax.plot(xx[m.failed], yy[m.failed], "x", color="r", markersize=6, linestyle="none", label="run failed")
+        if point is not None:
+            ax.plot(point[0], point[1] / 1e3, marker="*", markersize=15, color="r", markeredgecolor="k",
+                    linestyle="none", label="time series")
+        ax.set_xlabel("surface speed $\\omega_{set}$ [rad/s]")
+        ax.set_ylabel("weight on bit W [kN]")
+        ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    share = f"{int(m.sticks.sum())} of {m.sticks.size} points stick-slip"
+    figure.suptitle((title + "\n" if title else "") + f"stick-slip map of the string: {share}", fontsize=10)
+    return figure
