@@ -218,15 +218,9 @@ public:
     }
     /// The torque S and axial force P on node i from everything but its own wall contact and the bit's torque.
     void loads(double t, const double* x, const ContactModes& mode, std::size_t i, double& torque, double& axial) const {
-        const std::size_t n = setup_.elements;
-        torque = (i < n ? element_torque(x, i) : 0.0) - (i > 0 ? element_torque(x, i - 1) : 0.0);
-        axial = 0.0;
-        if (i == 0 && pi_drive()) torque += motor_torque(x, mode);
-        if (!axial_) return;
-        axial = (i < n ? element_tension(x, i) : 0.0) - (i > 0 ? element_tension(x, i - 1) : 0.0) + weight_[i];
-        if (i == 0 && setup_.hoisting == Hoisting::hook_load) axial -= p_.hook_load;
-        if (i == setup_.excitation_node) axial += excitation_force(t);
-        if (on_bottom && i == n) axial -= bit_.weight_on_bit();
+        ElementLoads above;
+        if (i > 0) above = element_loads(x, i - 1);
+        loads_between(t, x, mode, i, above, element_loads(x, i), torque, axial);
     }
     /// The torque the surface applies, N m: the motor's, or what holds the prescribed speed.
     double surface_torque(double t, const double* x, const ContactModes& mode) const {
@@ -277,12 +271,17 @@ public:
     void guards(double t, const double* x, const ContactModes& mode, double* g) const {
         const std::size_t n = setup_.elements;
         std::size_t k = 0;
+        ElementLoads above, below = element_loads(x, 0);
         for (std::size_t i = 0; i <= n; ++i) {
+            if (i > 0) {
+                above = below;
+                below = element_loads(x, i);
+            }
             const std::size_t c = contact_of_[i];
             const bool has_bit = on_bottom && i == n;
             if (c == npos && !has_bit) continue;
             double s = 0.0, a = 0.0;
-            loads(t, x, mode, i, s, a);
+            loads_between(t, x, mode, i, above, below, s, a);
             if (c != npos) {
                 if (axial_) walls2_[c].guards(x[omega(i)], x[speed(i)], s, a, mode[c], g + k);
                 else walls1_[c].guards(x[omega(i)], s, x + law_state(i), mode[c], inertia_[i], g + k);
@@ -302,10 +301,15 @@ public:
         double power[work_count] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         std::size_t k = 0;
         dx[speed_error_integral] = pi_drive() && mode[drive_slot_] == 0 ? p_.surface_speed - x[omega(0)] : 0.0;
+        ElementLoads above, below = element_loads(x, 0);
         for (std::size_t i = 0; i <= n; ++i) {
+            if (i > 0) {  // each element's torque and tension once: the node above's below is this node's above
+                above = below;
+                below = element_loads(x, i);
+            }
             const double w = x[omega(i)], v = axial_ ? x[speed(i)] : 0.0;
             double s = 0.0, a = 0.0;
-            loads(t, x, mode, i, s, a);
+            loads_between(t, x, mode, i, above, below, s, a);
             dx[theta(i)] = w;
             double dw = s / inertia_[i], dv = a / mass_[i];
             for (std::size_t j = 0; j < Z; ++j) dx[law_state(i) + j] = 0.0;
@@ -639,6 +643,28 @@ public:
     }
 
 private:
+    /// Element e's torque and tension (zero past the bit): what loads_between reads, computed once per element
+    /// when a sweep over the nodes carries the one above (rhs_guards, guards).
+    struct ElementLoads {
+        double torque = 0.0, tension = 0.0;
+    };
+    ElementLoads element_loads(const double* x, std::size_t e) const {
+        if (e >= setup_.elements) return {};
+        return {element_torque(x, e), element_tension(x, e)};
+    }
+    /// loads() of node i from the elements above (i - 1; zero at the top) and below (i) it.
+    void loads_between(double t, const double* x, const ContactModes& mode, std::size_t i, const ElementLoads& above,
+                       const ElementLoads& below, double& torque, double& axial) const {
+        torque = below.torque - above.torque;
+        axial = 0.0;
+        if (i == 0 && pi_drive()) torque += motor_torque(x, mode);
+        if (!axial_) return;
+        axial = below.tension - above.tension + weight_[i];
+        if (i == 0 && setup_.hoisting == Hoisting::hook_load) axial -= p_.hook_load;
+        if (i == setup_.excitation_node) axial += excitation_force(t);
+        if (on_bottom && i == setup_.elements) axial -= bit_.weight_on_bit();
+    }
+
     static constexpr std::array<const char*, 7> bit_mode_names{"bit_mode_-3", "bit_mode_-2", "bit_slip_negative",
                                                                "bit_stick",   "bit_slip_positive", "bit_mode_2",
                                                                "bit_mode_3"};
