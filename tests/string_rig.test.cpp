@@ -650,3 +650,55 @@ TEST_CASE("string rig: energy balance with axial motion, hook load, an agitator 
     CHECK(x[w + Rig::excitation_work] != 0.0);
     CHECK(x[w + Rig::hoist_work] != 0.0);
 }
+
+TEST_CASE("string rig: a top drive that saturates while the string spins up holds its torque limit (no chattering)",
+          "[string_rig]") {
+    // The PI torque reaches T_max while the integral would carry it further and the frozen integral would let it
+    // fall back: the motion slides along T_m = T_max (Filippov), the integral following with k_i dI/dt = k_p dw_0/dt.
+    // Before the drive had this mode the run flipped between linear and limited until the chattering bound stopped
+    // it (found by the Python property tests).
+    StringRigParams p;
+    p.damping_time = 0.01;
+    p.top_drive_inertia = 1000.0;
+    p.surface_speed = 56.234;
+    p.proportional_gain = 1000.0;
+    p.integral_gain = 1e4;
+    p.torque_limit = 1e5;
+    p.inclination = 1.0;
+    StringRigSetup s;
+    s.elements = 4;
+    const StringRig<Coulomb, VelocityWeakeningBit> rig(pipe_string(800.0), p, s, Coulomb(0.2, 0.25),
+                                                       VelocityWeakeningBit(NavarroLopezBit(), 5e4));
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-10;
+    o.output_times = grid(3.0, 0.01);
+    for (Method method : {Method::dormand_prince, Method::cvode_bdf}) {
+        o.method = method;
+        const Result r = simulate(rig, 3.0, o);
+        REQUIRE(r.completed);
+        // the spans the drive holds its limit, from the event log
+        std::vector<std::pair<double, double>> holding;
+        for (const Event& e : r.events) {
+            if (e.name.rfind("top_drive.", 0) != 0) continue;
+            if (e.mode_after_name == std::string("drive_holding_positive_limit")) holding.emplace_back(e.time, 3.0);
+            else if (e.mode_before_name == std::string("drive_holding_positive_limit")) holding.back().second = e.time;
+        }
+        REQUIRE_FALSE(holding.empty());
+        // while holding, the PI law's torque k_p (w_set - w_0) + k_i I stays on the limit: the sliding invariant
+        std::size_t rows_held = 0;
+        for (std::size_t row = 0; row < r.rows(); ++row) {
+            const double t = r.t[row];
+            bool inside = false;
+            for (const auto& [from, to] : holding) inside = inside || (t > from && t < to);
+            if (!inside) continue;
+            ++rows_held;
+            const double* x = &r.states[row * r.state_count()];
+            const double u = p.proportional_gain * (p.surface_speed - x[rig.omega(0)]) +
+                             p.integral_gain * x[StringRig<Coulomb, VelocityWeakeningBit>::speed_error_integral];
+            CHECK(u == Approx(p.torque_limit).epsilon(1e-6));
+        }
+        CHECK(rows_held > 10);
+        check_torsional_balance(rig, r);
+    }
+}

@@ -7,8 +7,10 @@
 // axial speeds positive down the hole).
 //  * top drive (TopDrive): PI speed control of a motor whose inertia J_td adds to node 0,
 //      T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt, -T_max, T_max),
-//    with the integral frozen while the torque is limited (anti-windup), the limit located as events; or a
-//    prescribed surface speed (w_0 = w_set held, the torque it takes recorded as work).
+//    with the integral frozen while the torque is limited (anti-windup), the limit located as events; where the
+//    linear law would push the torque straight back past the limit and the frozen one back inside (a Filippov
+//    sliding motion along T_m = T_max), the drive holds the limit with the integral following it,
+//    k_i dI/dt = k_p dw_0/dt; or a prescribed surface speed (w_0 = w_set held, the torque it takes recorded as work).
 //  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
 //  * wall contacts at chosen nodes with a normal force each (given, or the straight inclined hole's buoyed weight
 //    w_b sin I per node; w_b from the string's density minus the mud's). Torsion-only runs: any law of the
@@ -209,9 +211,11 @@ public:
     double controller_torque(const double* x) const {
         return p_.proportional_gain * (p_.surface_speed - x[omega(0)]) + p_.integral_gain * x[speed_error_integral];
     }
+    /// Drive modes: 0 linear; +-1 at the limit with the integral frozen; +-2 holding the limit, the integral
+    /// following it (sliding along T_m = +-T_max).
     double motor_torque(const double* x, const ContactModes& mode) const {
         const int m = mode[drive_slot_];
-        return m == 0 ? controller_torque(x) : m * p_.torque_limit;
+        return m == 0 ? controller_torque(x) : (m > 0 ? 1.0 : -1.0) * p_.torque_limit;
     }
     double excitation_force(double t) const {
         return p_.excitation_amplitude * std::sin(2.0 * pi * p_.excitation_frequency * t);
@@ -293,7 +297,7 @@ public:
                     k += BitContact::guard_count;
                 }
         }
-        if (pi_drive()) drive_guards(x, mode, g + k);
+        if (pi_drive()) drive_guards(x, mode, top_acceleration(t, x, mode), g + k);
     }
 
     void rhs_guards(double t, const double* x, const ContactModes& mode, double* dx, double* g) const {
@@ -375,17 +379,35 @@ public:
                 power[damping_work] += d;
             }
         }
-        if (g != nullptr && pi_drive()) drive_guards(x, mode, g + k);
+        if (pi_drive() && holding_limit(mode))  // k_i dI/dt = k_p dw_0/dt keeps T_m at the limit
+            dx[speed_error_integral] = p_.proportional_gain / p_.integral_gain * dx[omega(0)];
+        if (g != nullptr && pi_drive()) drive_guards(x, mode, dx[omega(0)], g + k);
         for (std::size_t j = 0; j < work_count; ++j) dx[work_offset() + j] = power[j];
     }
 
-    /// Every node's coupling reaches its neighbours' blocks only (node i's accelerations read nodes i - 1 .. i + 1).
-    Bandwidths jacobian_bandwidths() const { return {block_ + 1, block_ + 1}; }
+    /// Every node's coupling reaches its neighbours' blocks only (node i's accelerations read nodes i - 1 .. i + 1);
+    /// the PI integral's row, holding the limit, is node 0's acceleration row, which reaches omega_1.
+    Bandwidths jacobian_bandwidths() const { return {block_ + 1, block_ + (can_hold_limit() ? 2 : 1)}; }
 
     /// The analytic Jacobian inside the band (the work integrals' rows left out, see the header comment).
     template <class Add, class L = WallLaw, class B = Bit,
               std::enable_if_t<law_has_partials_v<L> && law_has_partials_v<B>, int> = 0>
     void jacobian_entries(double t, const double* x, const ContactModes& mode, Add&& add) const {
+        if (pi_drive() && holding_limit(mode)) {  // the integral's row: k_p / k_i times node 0's acceleration row
+            const double ratio = p_.proportional_gain / p_.integral_gain;
+            const std::size_t top = omega(0);
+            node_jacobian_entries(t, x, mode, [&](std::size_t i, std::size_t j, double v) {
+                add(i, j, v);
+                if (i == top) add(speed_error_integral, j, ratio * v);
+            });
+        } else {
+            node_jacobian_entries(t, x, mode, add);
+        }
+    }
+
+private:
+    template <class Add>
+    void node_jacobian_entries(double t, const double* x, const ContactModes& mode, Add&& add) const {
         const std::size_t n = setup_.elements;
         const double beta = p_.damping_time;
         for (std::size_t i = 0; i <= n; ++i) {
@@ -484,6 +506,7 @@ public:
         if (pi_drive() && mode[drive_slot_] == 0) add(speed_error_integral, omega(0), -1.0);
     }
 
+public:
     int guard_direction(std::size_t, const ContactModes&) const { return -1; }
     const char* guard_name(std::size_t i, const ContactModes& mode) const {
         const int m = mode[guard_slot_[i]];
@@ -492,7 +515,7 @@ public:
     /// Names of the codes guard_mode gives: wall contact modes as they are, the bit's + 20, the drive's + 10.
     const char* mode_name(int code) const {
         if (code >= 17 && code <= 23) return bit_mode_names[static_cast<std::size_t>(code - 17)];
-        if (code >= 9 && code <= 11) return drive_mode_names[static_cast<std::size_t>(code - 9)];
+        if (code >= 8 && code <= 12) return drive_mode_names[static_cast<std::size_t>(code - 8)];
         if (axial_) return Wall2::mode_name(code);
         if (!walls1_.empty()) return walls1_[0].mode_name(code);
         return contact_mode_name(code);
@@ -575,10 +598,7 @@ public:
                 }
             }
         }
-        if (pi_drive() && any(fired + k, 2)) {
-            const int m = mode[drive_slot_];
-            next[drive_slot_] = static_cast<std::int8_t>(m != 0 ? 0 : fired[k] != 0 ? 1 : -1);
-        }
+        if (pi_drive() && any(fired + k, 2)) next[drive_slot_] = static_cast<std::int8_t>(drive_switch(t, x, next, fired + k));
         return next;
     }
 
@@ -668,8 +688,9 @@ private:
     static constexpr std::array<const char*, 7> bit_mode_names{"bit_mode_-3", "bit_mode_-2", "bit_slip_negative",
                                                                "bit_stick",   "bit_slip_positive", "bit_mode_2",
                                                                "bit_mode_3"};
-    static constexpr std::array<const char*, 3> drive_mode_names{"drive_at_negative_limit", "drive_linear",
-                                                                 "drive_at_positive_limit"};
+    static constexpr std::array<const char*, 5> drive_mode_names{
+        "drive_holding_negative_limit", "drive_at_negative_limit", "drive_linear", "drive_at_positive_limit",
+        "drive_holding_positive_limit"};
 
     static bool any(const int* fired, std::size_t count) {
         for (std::size_t j = 0; j < count; ++j)
@@ -677,16 +698,50 @@ private:
         return false;
     }
 
-    void drive_guards(const double* x, const ContactModes& mode, double* g) const {
+    /// Node 0's angular acceleration (no wall contact there): what the drive's switching functions read.
+    double top_acceleration(double t, const double* x, const ContactModes& mode) const {
+        double torque = 0.0, axial = 0.0;
+        loads(t, x, mode, 0, torque, axial);
+        return torque / inertia_[0];
+    }
+    bool can_hold_limit() const { return pi_drive() && p_.integral_gain > 0.0; }
+    bool holding_limit(const ContactModes& mode) const { return mode[drive_slot_] == 2 || mode[drive_slot_] == -2; }
+
+    /// dT/dt of the linear PI law (k_i e - k_p dw_0/dt), times the side s of the limit: > 0 pushes outward.
+    double linear_push(const double* x, double top_acceleration, int side) const {
+        return side * (p_.integral_gain * (p_.surface_speed - x[omega(0)]) - p_.proportional_gain * top_acceleration);
+    }
+
+    void drive_guards(const double* x, const ContactModes& mode, double top_acceleration, double* g) const {
         const double u = controller_torque(x), limit = p_.torque_limit;
         const int m = mode[drive_slot_];
         if (m == 0) {
             g[0] = limit - u;  // reaches +T_max
             g[1] = limit + u;  // reaches -T_max
-        } else {
+        } else if (m == 1 || m == -1) {
             g[0] = m * (u - m * limit);  // the PI torque comes back inside the limit
             g[1] = 1.0;
+        } else {
+            const int side = m > 0 ? 1 : -1;
+            g[0] = linear_push(x, top_acceleration, side);  // the linear law turns inward: release
+            g[1] = side * top_acceleration;  // the frozen law turns outward (dT/dt = -k_p dw_0/dt): freeze
         }
+    }
+
+    /// The drive's new mode when its switching functions fire (`next`: the other slots already switched).
+    int drive_switch(double t, const double* x, const ContactModes& next, const int* fired) const {
+        const int m = next[drive_slot_];
+        if (m == 2 || m == -2) return fired[0] != 0 ? 0 : m / 2;
+        const int side = m != 0 ? m : (fired[0] != 0 ? 1 : -1);
+        ContactModes at_limit = next;
+        at_limit[drive_slot_] = static_cast<std::int8_t>(side);
+        const double dw0 = top_acceleration(t, x, at_limit);
+        const bool linear_out = can_hold_limit() && linear_push(x, dw0, side) > 0.0;
+        if (m == 0) {  // reaching the limit from inside
+            if (side * dw0 <= 0.0) return side;           // the frozen law stays outside
+            return linear_out ? 2 * side : 0;              // sliding, or grazing the limit
+        }
+        return linear_out ? 2 * side : 0;  // back inside: unless the linear law would leave again at once
     }
 
     /// Guard k of slot `slot`, with its name for each mode the slot can be in (events name the node).
@@ -702,8 +757,10 @@ private:
             } else if (on_bottom && slot == bit_slot_) {
                 if constexpr (on_bottom) name = std::string("bit.") + bit_contact_[0].guard_name(k, m);
             } else {
-                name = m == 0 ? (k == 0 ? "top_drive.positive_torque_limit" : "top_drive.negative_torque_limit")
-                              : "top_drive.back_inside_limit";
+                name = m == 0   ? (k == 0 ? "top_drive.positive_torque_limit" : "top_drive.negative_torque_limit")
+                       : m == 1 || m == -1 ? "top_drive.back_inside_limit"
+                       : k == 0            ? "top_drive.released_from_limit"
+                                           : "top_drive.integral_frozen_at_limit";
             }
             names[static_cast<std::size_t>(m + 3)] = std::move(name);
         }
