@@ -10,6 +10,7 @@
 
 #include "catch.hpp"
 #include "frictionsim/simulate.hpp"
+#include "frictionsim/solve/root_location.hpp"
 #include "frictionsim/solve/system_size.hpp"
 
 using namespace frictionsim;
@@ -337,4 +338,51 @@ TEST_CASE("run-time size: the chattering bound and partial results work with per
             CHECK(std::string(e.what()).find(partial.events.back().name) != std::string::npos);
         }
     }
+}
+
+namespace {
+/// Two switching functions given as functions of time on one step's "dense output": what RootLocator sees.
+struct TwoGuards {
+    static constexpr std::size_t state_size = 1, guard_count = 2;
+    int guard_direction(std::size_t i, int) const { return i == 0 ? -1 : +1; }
+    static void at(double t, std::array<double, 2>& g) {
+        g[0] = (t - 0.5) * (t - 0.5) - 0.01;  // falls through zero at 0.4 and rises back at 0.6: same sign at both ends
+        g[1] = t - 0.7;                       // rises through zero at 0.7
+    }
+};
+}  // namespace
+
+TEST_CASE("root location: a guard that crosses and comes back within one step is found, the earliest crossing first",
+          "[run_time_size]") {
+    const TwoGuards sys;
+    detail::RootLocator<TwoGuards> roots(sys);
+    TwoGuards::at(0.0, roots.values());
+    roots.restarted();
+    std::array<double, 2> end{};
+    TwoGuards::at(1.0, end);
+    roots.set_references(0, end);
+    CHECK(end[0] == Approx(roots.values()[0]));  // guard 0 has the same value at both ends of the step
+    double t_root = 0.0;
+    REQUIRE(roots.scan(0, 0.0, 1.0, end, [](double t, std::array<double, 2>& g) { TwoGuards::at(t, g); }, t_root));
+    CHECK(t_root == Approx(0.4).margin(1e-12));  // guard 0's dip, before guard 1's crossing at 0.7
+    std::array<double, 2> at_root{};
+    TwoGuards::at(t_root, at_root);
+    roots.mark(0, at_root);
+    CHECK(roots.roots()[0] == -1);
+    CHECK(roots.roots()[1] == 0);
+}
+
+TEST_CASE("root location: a guard that sits at zero after a restart is masked until it moves", "[run_time_size]") {
+    const TwoGuards sys;
+    detail::RootLocator<TwoGuards> roots(sys);
+    roots.values() = {0.0, -0.5};  // guard 0 on its surface at the restart
+    roots.restarted();
+    const std::array<double, 2> still{0.0, -0.4};
+    roots.set_references(0, still);
+    double t_root = 0.0;
+    CHECK_FALSE(roots.scan(0, 0.0, 1.0, still, [&](double, std::array<double, 2>& g) { g = still; }, t_root));
+    // it then leaves zero upwards (its non-triggering side) and comes back below within the next step: a switch
+    const std::array<double, 2> below{-0.1, -0.3};
+    roots.set_references(0, below);
+    CHECK(roots.crosses(0, below));
 }

@@ -13,6 +13,7 @@
 
 #include "catch.hpp"
 #include "frictionsim/drillstring/string_rig.hpp"
+#include "frictionsim/drillstring/string_rig_params.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/friction/dahl.hpp"
 #include "frictionsim/friction/lugre.hpp"

@@ -49,10 +49,11 @@ public:
     }
 
     /// Scans the step [t_prev, t_end] (guards g_end at its end) for the earliest crossing; `at(t, g)` evaluates the
-    /// guards on the dense output. True with t_root set when a guard crossed; `tol` is the bracket's width.
+    /// guards on the dense output. True with t_root set when a guard crossed (bracketed to CVODE's ttol, 100 ulps of
+    /// t + h); false after no_root(g_end) when none did.
     template <class GuardsAt>
-    bool scan(const Mode& mode, double t_prev, double t_end, const Guards& g_end, double tol, GuardsAt&& at,
-              double& t_root) {
+    bool scan(const Mode& mode, double t_prev, double t_end, const Guards& g_end, GuardsAt&& at, double& t_root) {
+        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_end) + (t_end - t_prev));
         t_root = t_end;
         double lo = t_prev;
         g_lo_ = reference_;
@@ -69,6 +70,7 @@ public:
             lo = t_k;
             g_lo_ = g_k_;
         }
+        if (!any) no_root(g_end);
         return any;
     }
 

@@ -430,16 +430,12 @@ private:
         Guards& g1 = g1_;
         guards(t_, y_, g1);
         roots_.set_references(mode_, g1);
-        const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_) + std::abs(h_dense_));
         double t_root = t_;
-        const bool any = roots_.scan(mode_, t_prev_, t_, g1, tol, [this](double t, Guards& g) {
+        const bool any = roots_.scan(mode_, t_prev_, t_, g1, [this](double t, Guards& g) {
             interpolate(t, ytmp_.data());
             guards(t, ytmp_, g);
         }, t_root);
-        if (!any) {
-            roots_.no_root(g1);
-            return {t_, false};
-        }
+        if (!any) return {t_, false};
         if (t_root < t_) {
             interpolate(t_root, y_.data());
             t_ = t_root;
