@@ -389,3 +389,24 @@ TEST_CASE("Moreau-Jean: outputs at requested times and the event log", "[moreau_
     // a switch costs what the switching contacts cost: a step without a switch factors nothing
     CHECK(mj.statistics().factorisations <= 1 + 2 * mj.statistics().contact_switches);
 }
+
+TEST_CASE("MoreauJean: contact bounds changed between steps take effect from the next step", "[moreau_jean]") {
+    // A free block (m = 1) sliding at 1 m/s against kinetic 1 N decelerates at 1 m/s^2; from t = 0.2 s at 2 N it
+    // decelerates at 2: v(0.4) = 1 - 0.2 - 0.4 = 0.4 exactly (piecewise-constant force: the theta-method is exact).
+    LinearMechanicalSystem sys;
+    sys.mass = sparse(Eigen::MatrixXd::Constant(1, 1, 1.0));
+    sys.contacts = {PointContact{0, 1.5, 1.0}};
+    MoreauJeanOptions o;
+    o.step = 0.01;
+    MoreauJean mj(sys, o, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Constant(1, 1.0));
+    mj.run(0.2);
+    CHECK(mj.velocities()(0) == Approx(0.8).margin(1e-12));
+    mj.set_contact_bounds(0, 3.0, 2.0);
+    mj.run(0.4);
+    CHECK(mj.velocities()(0) == Approx(0.4).margin(1e-12));
+    mj.run(0.7);  // comes to rest at 0.6 and stays (static 3 N, nothing pulls)
+    CHECK(mj.velocities()(0) == 0.0);
+    CHECK(rejected_parameter([&] { mj.set_contact_bounds(1, 3.0, 2.0); }) == "contact");
+    CHECK(rejected_parameter([&] { mj.set_contact_bounds(0, 1.0, 2.0); }) == "static_bound");
+    CHECK(rejected_parameter([&] { mj.set_contact_bounds(0, 3.0, -1.0); }) == "kinetic_bound");
+}

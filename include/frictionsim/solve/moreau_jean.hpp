@@ -346,6 +346,21 @@ public:
     /// f(t) over the last step: theta f_{k+1} + (1 - theta) f_k (what the step applied; explicit: f_k).
     const Eigen::VectorXd& applied_force() const { return f_applied_; }
 
+    /// Changes contact j's bounds between steps (a law whose levels move with the state, e.g. a velocity-weakening
+    /// bit's kinetic torque taken at the step's start). Same rules as at construction.
+    void set_contact_bounds(std::size_t j, double static_bound, double kinetic_bound) {
+        constexpr const char* who = "MoreauJean::set_contact_bounds";
+        if (j >= sys_.contacts.size())
+            detail::reject(who, "contact", "< the number of contacts", static_cast<double>(j));
+        detail::require_non_negative(who, "kinetic_bound", kinetic_bound);
+        detail::require_at_least(who, "static_bound", static_bound, kinetic_bound, ">= kinetic_bound and finite");
+        PointContact& c = sys_.contacts[j];
+        if (c.slow_speed > 0.0 && !(c.slow_bound <= static_bound))
+            detail::reject(who, "static_bound", ">= the contact's slow_bound", static_bound);
+        c.static_bound = static_bound;
+        c.kinetic_bound = kinetic_bound;
+    }
+
     /// Steps of h until t_end is reached or passed by less than h / 2 (the grid t0 + k h), calling the observer
     /// at the output times on the way. Non-finite states stop with SimulationError at the last finite time.
     void run(double t_end, const Observer& observer = nullptr) {
