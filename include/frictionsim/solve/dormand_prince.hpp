@@ -18,6 +18,7 @@
 #include "options.hpp"
 #include "result.hpp"
 #include "root_location.hpp"
+#include "step_control.hpp"
 #include "system_size.hpp"
 
 namespace frictionsim {
@@ -93,9 +94,8 @@ public:
         if (h_ == 0.0) h_ = opt_.initial_step > 0.0 ? opt_.initial_step : initial_step(t_stop);
         for (;;) {
             if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
-            double h = std::min({h_, opt_.max_step, t_stop - t_});
-            const bool last = t_ + h >= t_stop || (t_stop - (t_ + h)) <= 1e-12 * std::abs(t_stop);
-            if (last) h = t_stop - t_;
+            bool last = false;
+            const double h = detail::trial_step(h_, opt_, t_, t_stop, last);
             if (h <= underflow_step()) fail("step size underflow (stiff, discontinuous or non-finite right-hand side)");
             ++stats_.steps;
             const double err = attempt(h);
@@ -187,12 +187,8 @@ private:
             ++stats_.guard_evaluations;
         }
     }
-    double scale(std::size_t i, double a, double b) const {
-        return opt_.absolute_tolerance(i) + opt_.rtol * std::max(std::abs(a), std::abs(b));
-    }
-
-    /// Steps this short carry no information at t_ (a few ulps): the error control cannot work there.
-    double underflow_step() const { return 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_)); }
+    double scale(std::size_t i, double a, double b) const { return detail::error_scale(opt_, i, a, b); }
+    double underflow_step() const { return detail::underflow_step(t_); }
 
     /// What is left to t_stop is a few ulps (a run of t_end = 1e-300, a switch located just before t_end): one
     /// Euler step, linear dense output, no guard scan (no crossing can be resolved inside it).
@@ -214,33 +210,14 @@ private:
         return {t_, false};
     }
 
-    [[noreturn]] void fail(const char* why) const {
-        std::ostringstream msg;
-        msg.precision(17);
-        msg << "DormandPrince: " << why << " at t = " << t_ << " s";
-        throw SimulationError(msg.str(), t_);
-    }
+    [[noreturn]] void fail(const char* why) const { detail::step_failure("DormandPrince", why, t_); }
 
-    // Hairer's starting step: a guess from |y|/|f|, refined by one explicit Euler step.
     double initial_step(double t_stop) {
-        double dnf = 0.0, dny = 0.0;
-        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
-            const double sk = scale(i, y_[i], 0.0);
-            dnf += (k1_[i] / sk) * (k1_[i] / sk);
-            dny += (y_[i] / sk) * (y_[i] / sk);
-        }
-        double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : 0.01 * std::sqrt(dny / dnf);
-        h = std::min({h, opt_.max_step, t_stop - t_});
-        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) ytmp_[i] = y_[i] + h * k1_[i];
-        rhs(t_ + h, ytmp_, k2_);
-        double der2 = 0.0;
-        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
-            const double d = (k2_[i] - k1_[i]) / scale(i, y_[i], 0.0);
-            der2 += d * d;
-        }
-        const double der12 = std::max(std::sqrt(der2) / h, std::sqrt(dnf));
-        const double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.2);
-        return std::min({100.0 * h, h1, opt_.max_step});
+        return detail::starting_step(n(), 4, opt_, t_, t_stop, y_.data(), k1_.data(), ytmp_.data(), k2_.data(),
+                                     [this](double t, const double* x, double* dxdt) {
+                                         sys_.rhs(t, x, mode_, dxdt);
+                                         ++stats_.rhs_evaluations;
+                                     });
     }
 
     // One trial step of size h from (t_, y_): fills k2..k7 and y1_, returns the scaled error norm.

@@ -43,6 +43,7 @@
 #include "options.hpp"
 #include "result.hpp"
 #include "root_location.hpp"
+#include "step_control.hpp"
 #include "system_size.hpp"
 
 namespace frictionsim {
@@ -120,9 +121,8 @@ public:
         int singular = 0;
         for (;;) {
             if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
-            double h = std::min({h_, opt_.max_step, t_stop - t_});
-            const bool last = t_ + h >= t_stop || (t_stop - (t_ + h)) <= 1e-12 * std::abs(t_stop);
-            if (last) h = t_stop - t_;
+            bool last = false;
+            const double h = detail::trial_step(h_, opt_, t_, t_stop, last);
             if (h <= underflow_step()) fail("step size underflow (discontinuous or non-finite right-hand side)");
             if (!jacobian_current_) evaluate_jacobian(h);
             ++stats_.steps;
@@ -219,22 +219,13 @@ private:
         sys_.guards(t, x.data(), mode_, g.data());
         ++stats_.guard_evaluations;
     }
-    double scale(std::size_t i, double a, double b) const {
-        return opt_.absolute_tolerance(i) + opt_.rtol * std::max(std::abs(a), std::abs(b));
-    }
-    double underflow_step() const {
-        return 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(t_));
-    }
+    double scale(std::size_t i, double a, double b) const { return detail::error_scale(opt_, i, a, b); }
+    double underflow_step() const { return detail::underflow_step(t_); }
     static double step_factor(double err) {  // h_new = h / step_factor(err)
         return std::max(kFacMinInv, std::min(kFacMaxInv, std::pow(err, 0.25) / kSafety));
     }
 
-    [[noreturn]] void fail(const char* why) const {
-        std::ostringstream msg;
-        msg.precision(17);
-        msg << "Rodas4: " << why << " at t = " << t_ << " s";
-        throw SimulationError(msg.str(), t_);
-    }
+    [[noreturn]] void fail(const char* why) const { detail::step_failure("Rodas4", why, t_); }
 
     // J = df/dx at (t_, y_), and df/dt unless the system is autonomous.
     void evaluate_jacobian(double h) {
@@ -318,28 +309,12 @@ private:
         }
     }
 
-    // Hairer's starting step (Solving ODEs I, sec. II.4) for an error estimate of order 3: h ~ (0.01 / |y''|)^(1/4).
     double initial_step(double t_stop) {
-        double dnf = 0.0, dny = 0.0;
-        for (std::size_t i = 0; i < n_; ++i) {
-            const auto k = static_cast<Eigen::Index>(i);
-            const double sk = scale(i, y_[k], 0.0);
-            dnf += (f0_[k] / sk) * (f0_[k] / sk);
-            dny += (y_[k] / sk) * (y_[k] / sk);
-        }
-        double h = (dnf <= 1e-10 || dny <= 1e-10) ? 1e-6 : 0.01 * std::sqrt(dny / dnf);
-        h = std::min({h, opt_.max_step, t_stop - t_});
-        ytmp_ = y_ + h * f0_;
-        rhs(t_ + h, ytmp_, fs_);
-        double der2 = 0.0;
-        for (std::size_t i = 0; i < n_; ++i) {
-            const auto k = static_cast<Eigen::Index>(i);
-            const double d = (fs_[k] - f0_[k]) / scale(i, y_[k], 0.0);
-            der2 += d * d;
-        }
-        const double der12 = std::max(std::sqrt(der2) / h, std::sqrt(dnf));
-        const double h1 = der12 <= 1e-15 ? std::max(1e-6, h * 1e-3) : std::pow(0.01 / der12, 0.25);
-        return std::min({100.0 * h, h1, opt_.max_step});
+        return detail::starting_step(n_, 3, opt_, t_, t_stop, y_.data(), f0_.data(), ytmp_.data(), fs_.data(),
+                                     [this](double t, const double* x, double* dxdt) {
+                                         sys_.rhs(t, x, mode_, dxdt);
+                                         ++stats_.rhs_evaluations;
+                                     });
     }
 
     // One trial step of size h from (t_, y_) with the factored matrix: fills k1..k6 and y1_, returns the scaled
