@@ -65,33 +65,43 @@ private:
 
 /// Guards that are exactly zero right after a restart are masked by the integrators until they move. Probe
 /// which way each one moves (explicit Euler over a tiny step) so that one leaving zero towards its triggering
-/// side fires at once rather than being masked (SciML OrdinaryDiffEq #3222). Returns true if any fires.
+/// side fires at once rather than being masked (SciML OrdinaryDiffEq #3222). Its arrays are made once per run:
+/// a string switches a thousand times per simulated second.
 template <class System>
-bool zero_guards_triggering(const System& sys, double t, const double* x, const system_mode_t<System>& mode,
-                            GuardArray<System, int>& fired) {
-    const std::size_t N = state_size_of(sys), G = guard_count_of(sys);
-    GuardArray<System> g = make_guard_array(sys);
-    sys.guards(t, x, mode, g.data());
-    bool any_zero = false;
-    for (double gi : g) any_zero = any_zero || gi == 0.0;
-    if (!any_zero) return false;
-    const double dt = 1e-9 * std::max(1.0, std::abs(t));
-    StateArray<System> dxdt = make_state_array(sys), probe = make_state_array(sys);
-    sys.rhs(t, x, mode, dxdt.data());
-    for (std::size_t k = 0; k < N; ++k) probe[k] = x[k] + dt * dxdt[k];
-    GuardArray<System> g_probe = make_guard_array(sys);
-    sys.guards(t + dt, probe.data(), mode, g_probe.data());
-    bool any = false;
-    for (std::size_t i = 0; i < G; ++i) {
-        fired[i] = 0;
-        if (g[i] != 0.0) continue;
-        const int dir = sys.guard_direction(i, mode);
-        if (dir <= 0 && g_probe[i] < 0.0) fired[i] = -1;
-        if (dir >= 0 && g_probe[i] > 0.0) fired[i] = +1;
-        any = any || fired[i] != 0;
+class ZeroGuardProbe {
+public:
+    explicit ZeroGuardProbe(const System& sys)
+        : g_(make_guard_array(sys)), g_probe_(make_guard_array(sys)), dxdt_(make_state_array(sys)),
+          probe_(make_state_array(sys)) {}
+
+    /// Sets fired[i] to the side a zero guard i leaves towards when that is its triggering side; true if any.
+    bool triggering(const System& sys, double t, const double* x, const system_mode_t<System>& mode,
+                    GuardArray<System, int>& fired) {
+        const std::size_t N = state_size_of(sys), G = guard_count_of(sys);
+        sys.guards(t, x, mode, g_.data());
+        bool any_zero = false;
+        for (double gi : g_) any_zero = any_zero || gi == 0.0;
+        if (!any_zero) return false;
+        const double dt = 1e-9 * std::max(1.0, std::abs(t));
+        sys.rhs(t, x, mode, dxdt_.data());
+        for (std::size_t k = 0; k < N; ++k) probe_[k] = x[k] + dt * dxdt_[k];
+        sys.guards(t + dt, probe_.data(), mode, g_probe_.data());
+        bool any = false;
+        for (std::size_t i = 0; i < G; ++i) {
+            fired[i] = 0;
+            if (g_[i] != 0.0) continue;
+            const int dir = sys.guard_direction(i, mode);
+            if (dir <= 0 && g_probe_[i] < 0.0) fired[i] = -1;
+            if (dir >= 0 && g_probe_[i] > 0.0) fired[i] = +1;
+            any = any || fired[i] != 0;
+        }
+        return any;
     }
-    return any;
-}
+
+private:
+    GuardArray<System> g_, g_probe_;
+    StateArray<System> dxdt_, probe_;
+};
 
 /// The run's wall-clock watch: between steps it polls SolverOptions::interrupt and checks the timeout, at most
 /// every kPollInterval (the clock is read every kStepsPerClockRead steps, a few ns each). Inactive, and free,
@@ -188,6 +198,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
     detail::RunWatch watch(options);
     GuardArray<System, int> fired = make_guard_array<System, int>(sys);
     StateArray<System> buffer = make_state_array(sys);
+    detail::ZeroGuardProbe<System> zero_guards(sys);
 
     // Resolve a switch at t (state x, guards `fired`), log it, restart; repeat while guards that sit at zero
     // after the restart head straight into their triggering side (cascading or simultaneous switches).
@@ -211,7 +222,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
                 }
             }
             integrator.restart(t, x.data(), mode);
-        } while (detail::zero_guards_triggering(sys, t, x.data(), mode, fired));
+        } while (zero_guards.triggering(sys, t, x.data(), mode, fired));
     };
 
     detail::reporting_time(t0, [&] {
@@ -221,7 +232,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
             ++next_output;
         }
         if (options.record_steps && next_output == 0) observer.step(t0, x.data(), mode);
-        if (detail::zero_guards_triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
+        if (zero_guards.triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
     });
 
     while (integrator.time() < t_end) {
