@@ -82,6 +82,32 @@ void register_results(py::module_& m) {
         .value("band", LinearSolver::band, "band LU: a drill string's nodes couple only their neighbours")
         .value("sparse", LinearSolver::sparse, "KLU (SuiteSparse) on the system's sparsity pattern");
 
+    py::class_<StopCondition>(m, "StopCondition",
+                              "A stop condition evaluated in the engine as the run goes (SciPy solve_ivp's events): a "
+                              "state crossing a level, or a switch into a named mode. Its crossings are logged "
+                              "(Result.t_events, y_events); a terminal one ends the run there (Result.status 1).")
+        .def(py::init([](const std::string& state, double level, int direction, const std::string& mode,
+                         bool terminal, const std::string& name) {
+                 return StopCondition{state, level, direction, mode, terminal, name};
+             }),
+             py::kw_only(), py::arg("state") = "", py::arg("level") = 0.0, py::arg("direction") = 0,
+             py::arg("mode") = "", py::arg("terminal") = true, py::arg("name") = "",
+             "state: a state's name, whose crossing of `level` counts (direction -1 falling, +1 rising, 0 both); or "
+             "mode: a switch into a mode of this name counts (e.g. 'stick'). terminal: the first crossing ends the run.")
+        .def_readwrite("state", &StopCondition::state)
+        .def_readwrite("level", &StopCondition::level)
+        .def_readwrite("direction", &StopCondition::direction)
+        .def_readwrite("mode", &StopCondition::mode)
+        .def_readwrite("terminal", &StopCondition::terminal)
+        .def_readwrite("name", &StopCondition::name)
+        .def("__repr__", [](const StopCondition& c) {
+            const std::string kind = c.state.empty() ? "mode='" + c.mode + "'"
+                                                     : "state='" + c.state + "', level=" +
+                                                           std::string(py::str(py::float_(c.level))) +
+                                                           ", direction=" + std::to_string(c.direction);
+            return "StopCondition(" + kind + ", terminal=" + (c.terminal ? "True" : "False") + ")";
+        });
+
     py::class_<SolverOptions>(m, "SolverOptions", "Options of simulate(); validated when the run starts.")
         .def(py::init<>())
         .def_readwrite("method", &SolverOptions::method)
@@ -94,6 +120,9 @@ void register_results(py::module_& m) {
         .def_readwrite("initial_step", &SolverOptions::initial_step)
         .def_readwrite("output_times", &SolverOptions::output_times)
         .def_readwrite("record_steps", &SolverOptions::record_steps)
+        .def_readwrite("record_event_rows", &SolverOptions::record_event_rows)
+        .def_readwrite("record_event_states", &SolverOptions::record_event_states)
+        .def_readwrite("stop_conditions", &SolverOptions::stop_conditions)
         .def_readwrite("max_events_in_window", &SolverOptions::max_events_in_window)
         .def_readwrite("event_window", &SolverOptions::event_window)
         .def_readwrite("timeout", &SolverOptions::timeout)
@@ -114,6 +143,10 @@ void register_results(py::module_& m) {
         .def_readonly("mode_after", &Event::mode_after)
         .def_readonly("mode_before_name", &Event::mode_before_name)
         .def_readonly("mode_after_name", &Event::mode_after_name)
+        .def_property_readonly("state_before", [](const Event& e) { return to_array(e.state_before); })
+        .def_property_readonly("state_after", [](const Event& e) { return to_array(e.state_after); })
+        .def_readonly("stop_condition", &Event::stop_condition, "a stop condition's index, or -1 for a switch")
+        .def_readonly("direction", &Event::direction, "a stop condition's crossing: -1 falling, +1 rising, 0 mode")
         .def("__repr__", [](const Event& e) {
             return "Event(time=" + std::string(py::str(py::float_(e.time))) + ", name='" + e.name + "', " +
                    e.mode_before_name + " -> " + e.mode_after_name + ")";
@@ -127,12 +160,20 @@ void register_results(py::module_& m) {
             py::list rows(log.events.size());
             for (std::size_t k = 0; k < log.events.size(); ++k) {
                 const Event& e = log.events[k];
+                const auto state = [](const std::vector<double>& x) -> py::object {
+                    if (x.empty()) return py::none();
+                    py::array_t<double> a = to_array(x);
+                    a.attr("setflags")(py::arg("write") = false);
+                    return std::move(a);
+                };
                 rows[k] = py::make_tuple(e.time, e.name, e.switching_function, e.mode_before, e.mode_after,
-                                         e.mode_before_name, e.mode_after_name);
+                                         e.mode_before_name, e.mode_after_name, state(e.state_before),
+                                         state(e.state_after), e.stop_condition, e.direction);
             }
             return rows;
         }, "The events as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, "
-           "mode_after_name).");
+           "mode_after_name, state_before, state_after, stop_condition, direction); the states None when not "
+           "recorded.");
 
     py::class_<Result, std::shared_ptr<Result>>(m, "RawResult", "What the C++ engine recorded (see frictionsim.Result).")
         .def_readonly("state_names", &Result::state_names)
@@ -146,6 +187,10 @@ void register_results(py::module_& m) {
         .def_readonly("events", &Result::events)
         .def("take_event_log", [](Result& r) { return EventLog{std::exchange(r.events, {})}; },
              "Move the event log out (events is empty afterwards): frictionsim.Result keeps it, not the columns.")
+        .def("take_stop_events", [](Result& r) { return EventLog{std::exchange(r.stop_events, {})}; },
+             "Move the stop conditions' crossings out, as take_event_log.")
+        .def_readonly("status", &Result::status, "0 reached t_end, 1 a terminal stop condition, -1 failed")
+        .def_readonly("message", &Result::message)
         .def_property_readonly("stats", [](const Result& r) {
             const SolverStats& s = r.stats;
             return py::dict(py::arg("steps") = s.steps, py::arg("rhs_evaluations") = s.rhs_evaluations,

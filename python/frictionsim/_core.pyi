@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'Stribeck', 'StringRig', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -754,6 +754,32 @@ class LinearSolver:
     @property
     def value(self) -> int:
         ...
+class StopCondition:
+    """
+    A stop condition evaluated in the engine as the run goes (SciPy solve_ivp's events): a state crossing a level, or a switch into a named mode. Its crossings are logged (Result.t_events, y_events); a terminal one ends the run there (Result.status 1).
+    """
+    mode: str
+    name: str
+    state: str
+    terminal: bool
+    def __init__(self, *, state: str = '', level: typing.SupportsFloat | typing.SupportsIndex = 0.0, direction: typing.SupportsInt | typing.SupportsIndex = 0, mode: str = '', terminal: bool = True, name: str = '') -> None:
+        """
+        state: a state's name, whose crossing of `level` counts (direction -1 falling, +1 rising, 0 both); or mode: a switch into a mode of this name counts (e.g. 'stick'). terminal: the first crossing ends the run.
+        """
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def direction(self) -> int:
+        ...
+    @direction.setter
+    def direction(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def level(self) -> float:
+        ...
+    @level.setter
+    def level(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
 class SolverOptions:
     """
     Options of simulate(); validated when the run starts.
@@ -764,6 +790,8 @@ class SolverOptions:
     reliable_rtol: typing.ClassVar[float] = 0.001
     linear_solver: LinearSolver
     method: Method
+    record_event_rows: bool
+    record_event_states: bool
     record_steps: bool
     def __init__(self) -> None:
         ...
@@ -834,6 +862,12 @@ class SolverOptions:
     def rtol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def stop_conditions(self) -> list[StopCondition]:
+        ...
+    @stop_conditions.setter
+    def stop_conditions(self, arg0: collections.abc.Sequence[StopCondition]) -> None:
+        ...
+    @property
     def timeout(self) -> float:
         ...
     @timeout.setter
@@ -845,6 +879,11 @@ class Event:
     """
     def __repr__(self) -> typing.Any:
         ...
+    @property
+    def direction(self) -> int:
+        """
+        a stop condition's crossing: -1 falling, +1 rising, 0 mode
+        """
     @property
     def mode_after(self) -> int:
         ...
@@ -861,6 +900,17 @@ class Event:
     def name(self) -> str:
         """
         name of the guard, e.g. 'relative_velocity'
+        """
+    @property
+    def state_after(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def state_before(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def stop_condition(self) -> int:
+        """
+        a stop condition's index, or -1 for a switch
         """
     @property
     def switching_function(self) -> int:
@@ -883,7 +933,7 @@ class EventLog:
     @property
     def rows(self) -> list:
         """
-        The events as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, mode_after_name).
+        The events as tuples (time, name, switching_function, mode_before, mode_after, mode_before_name, mode_after_name, state_before, state_after, stop_condition, direction); the states None when not recorded.
         """
 class RawResult:
     """
@@ -895,6 +945,10 @@ class RawResult:
         """
         Move the event log out (events is empty afterwards): frictionsim.Result keeps it, not the columns.
         """
+    def take_stop_events(self) -> EventLog:
+        """
+        Move the stop conditions' crossings out, as take_event_log.
+        """
     @property
     def completed(self) -> bool:
         ...
@@ -903,6 +957,9 @@ class RawResult:
         ...
     @property
     def friction_force(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def message(self) -> str:
         ...
     @property
     def mode(self) -> numpy.typing.NDArray[numpy.int32]:
@@ -916,6 +973,11 @@ class RawResult:
     @property
     def stats(self) -> dict:
         ...
+    @property
+    def status(self) -> int:
+        """
+        0 reached t_end, 1 a terminal stop condition, -1 failed
+        """
     @property
     def t(self) -> numpy.typing.NDArray[numpy.float64]:
         ...

@@ -5,7 +5,7 @@ Everything is copied once out of the C++ engine, so a Result pickles (process po
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Dict, Iterator, List, Optional
 
 import numpy as np
@@ -15,9 +15,10 @@ from . import _core
 __all__ = ["Event", "Result"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Event:
-    """One switch of the hybrid system, e.g. a stick -> slip transition or a reversal of v_r."""
+    """One switch of the hybrid system, e.g. a stick -> slip transition or a reversal of v_r; or one crossing of
+    a stop condition (``stop_condition >= 0``, in :attr:`Result.stop_events`)."""
 
     time: float  #: t [s]
     name: str  #: the switching function that fired, e.g. "relative_velocity", "stick_force"
@@ -26,6 +27,25 @@ class Event:
     mode_after: int
     mode_before_name: str  #: e.g. "stick", "slip_positive"
     mode_after_name: str
+    #: The state just before the switch and just after it (a switch may project it, e.g. a speed set to exactly
+    #: zero on entering stick); None when the run was made with ``record_event_states=False``.
+    state_before: Optional[np.ndarray] = None
+    state_after: Optional[np.ndarray] = None
+    stop_condition: int = -1  #: index of the stop condition that crossed, -1 for a switch
+    direction: int = 0  #: a stop condition's crossing: -1 falling, +1 rising (0: a mode condition)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Event):
+            return NotImplemented
+        return all(_same(getattr(self, f.name), getattr(other, f.name)) for f in fields(self))
+
+    __hash__ = None  # type: ignore[assignment]  # holds arrays
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return a is not None and b is not None and np.array_equal(a, b)
+    return a == b
 
 
 class Result:
@@ -43,12 +63,20 @@ class Result:
     mode : ndarray of int
         Contact mode at each row: -1 slip negative, 0 stick (or smooth), +1 slip positive.
     events : list of Event
-        The event log: every located switch, in order.
+        The event log: every located switch, in order, with the state before and after it.
+    stop_events : list of Event
+        The crossings of the run's stop conditions (``simulate(events=...)``), in time order.
+    t_events, y_events : list of ndarray
+        SciPy's layout of ``stop_events``: per stop condition, the times [s] and the states (one row each).
     stats : dict
         Solver counters: steps, rhs_evaluations, jacobian_evaluations, guard_evaluations, error_test_failures,
         restarts, events.
     completed : bool
         False for the partial result of a failed run (see :class:`frictionsim.SimulationError`).
+    status : int
+        SciPy's: 0 the run reached t_end, 1 a terminal stop condition ended it, -1 it failed.
+    message : str
+        What ``status`` means for this run.
     warnings : list of str
         Why a completed result may be unreliable (e.g. a loose rtol); each was also issued as an
         :class:`frictionsim.AccuracyWarning`.
@@ -68,8 +96,14 @@ class Result:
         # spend 2 % of a millisecond-long simulation making them (bench/compare.py measured it)
         self._event_log: Optional["_core.EventLog"] = raw.take_event_log()
         self._events: Optional[List[Event]] = None
+        self._stop_log: Optional["_core.EventLog"] = raw.take_stop_events()
+        self._stop_events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
+        self.status: int = int(raw.status)
+        self.message: str = str(raw.message)
+        #: How many stop conditions the run had (so that t_events has one entry each, crossed or not).
+        self.stop_condition_count: int = 0
         self.warnings: List[str] = list(raw.warnings)
         self.t_reached: float = float(raw.t_reached)
         self.period: Optional[float] = period
@@ -83,11 +117,78 @@ class Result:
             self._events = [Event(*row) for row in self._event_log.rows]
         return self._events
 
+    @property
+    def stop_events(self) -> List[Event]:
+        """The crossings of the run's stop conditions, in time order."""
+        if self._stop_events is None:
+            self._stop_events = [Event(*row) for row in self._stop_log.rows]
+        return self._stop_events
+
     def __getstate__(self) -> dict:
         state = self.__dict__.copy()
         state["_events"] = self.events  # the engine's event log does not pickle: the Events do
         state["_event_log"] = None
+        state["_stop_events"] = self.stop_events
+        state["_stop_log"] = None
         return state
+
+    # ------------------------------------------------------------------ SciPy's OdeResult names
+    @property
+    def y(self) -> np.ndarray:
+        """The states in SciPy's layout, shape (len(state_names), len(t)): ``y[i]`` is state i over time."""
+        return self.states.T
+
+    @property
+    def success(self) -> bool:
+        """True when the run reached t_end or a terminal stop condition (SciPy: status >= 0)."""
+        return self.status >= 0
+
+    @property
+    def nfev(self) -> int:
+        """Right-hand-side evaluations."""
+        return int(self.stats["rhs_evaluations"])
+
+    @property
+    def njev(self) -> int:
+        """Jacobian evaluations (implicit methods)."""
+        return int(self.stats["jacobian_evaluations"])
+
+    @property
+    def t_events(self) -> List[np.ndarray]:
+        """Per stop condition, the times [s] of its crossings (SciPy's t_events)."""
+        return [np.array([e.time for e in self.stop_events if e.stop_condition == k], dtype=float)
+                for k in range(self._condition_count())]
+
+    @property
+    def y_events(self) -> List[np.ndarray]:
+        """Per stop condition, the state at each of its crossings, shape (crossings, states) (SciPy's y_events);
+        empty when the run was made with ``record_event_states=False``."""
+        out = []
+        for k in range(self._condition_count()):
+            rows = [e.state_after for e in self.stop_events if e.stop_condition == k and e.state_after is not None]
+            out.append(np.array(rows, dtype=float).reshape(len(rows), len(self.state_names)))
+        return out
+
+    def _condition_count(self) -> int:
+        crossed = max((e.stop_condition for e in self.stop_events), default=-1) + 1
+        return max(self.stop_condition_count, crossed)
+
+    def events_frame(self, stop_events: bool = False):
+        """The event log (or the stop conditions' crossings) as a pandas DataFrame: one row per event with its time,
+        name, modes, and the state before and after it (columns ``<state>_before``, ``<state>_after``)."""
+        import pandas as pd
+
+        events = self.stop_events if stop_events else self.events
+        frame = pd.DataFrame({
+            "time": [e.time for e in events], "name": [e.name for e in events],
+            "switching_function": [e.switching_function for e in events],
+            "mode_before": [e.mode_before_name for e in events], "mode_after": [e.mode_after_name for e in events],
+        })
+        for side in ("before", "after"):
+            for i, state in enumerate(self.state_names):
+                frame[f"{state}_{side}"] = [np.nan if getattr(e, "state_" + side) is None
+                                            else float(getattr(e, "state_" + side)[i]) for e in events]
+        return frame
 
     # ------------------------------------------------------------------ named access
     def __getitem__(self, name: str) -> np.ndarray:

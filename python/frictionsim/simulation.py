@@ -35,7 +35,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              initial_step: float = SOLVER_DEFAULTS.initial_step,
              max_events_in_window: int = SOLVER_DEFAULTS.max_events_in_window,
              event_window: float = SOLVER_DEFAULTS.event_window, t_start: float = 0.0,
-             timeout: Optional[float] = None, max_output_rows: Optional[int] = None) -> Result:
+             timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
+             events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
+             record_event_states: bool = SOLVER_DEFAULTS.record_event_states) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
@@ -73,6 +75,17 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     max_output_rows : int, optional
         Rows (and events) the result may hold; default the engine's (2,000,000). Past it
         :class:`BudgetExceededError` (``budget == "max_output_rows"``), so a failing run cannot fill the memory.
+    events : sequence of StopCondition, optional
+        Stop conditions evaluated in the engine as the run goes (SciPy's ``events``, without a Python call per
+        step): ``StopCondition(state="disc_speed", level=0.0, direction=-1)`` (a state crossing a level, located
+        on the dense output) or ``StopCondition(mode="stick")`` (a switch into a mode of that name). Crossings go
+        to ``Result.t_events`` / ``y_events`` / ``stop_events``; the first crossing of a terminal one ends the
+        run there (``Result.status == 1``).
+    record_events : bool
+        Also put rows at both sides of every switch (its time, with the state and mode before, then after), so
+        that jumps are not smeared on the output grid.
+    record_event_states : bool
+        Keep the state before and after each switch on its :class:`Event` (``events_frame()``).
 
     Raises
     ------
@@ -111,15 +124,36 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
         options.timeout = _real("timeout", timeout)
     if max_output_rows is not None:
         options.max_output_rows = _integer("max_output_rows", max_output_rows, 1, 2**62)
+    conditions = _stop_conditions(events)
+    options.stop_conditions = conditions
+    options.record_event_rows = _flag("record_events", record_events)
+    options.record_event_states = _flag("record_event_states", record_event_states)
     try:
         raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))
     except SimulationError as error:
         error._period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
         raise
     result = Result(raw, period=rig.period)
+    result.stop_condition_count = len(conditions)
     for message in result.warnings:
         warnings.warn(message, AccuracyWarning, stacklevel=2)
     return result
+
+
+def _stop_conditions(events) -> List["_core.StopCondition"]:
+    if events is None:
+        return []
+    if isinstance(events, _core.StopCondition):
+        events = [events]
+    if isinstance(events, (str, bytes)) or not hasattr(events, "__iter__"):
+        raise InvalidParameterError(f"events must be a sequence of StopCondition (got {type(events).__name__})",
+                                    "events")
+    conditions = list(events)
+    for condition in conditions:
+        if not isinstance(condition, _core.StopCondition):
+            raise InvalidParameterError("events must hold StopCondition objects (got "
+                                        f"{type(condition).__name__} {condition!r:.60})", "events")
+    return conditions
 
 
 def _real(name: str, value) -> float:

@@ -19,6 +19,7 @@
 #include "hybrid_system.hpp"
 #include "options.hpp"
 #include "result.hpp"
+#include "stop_conditions.hpp"
 #include "system_size.hpp"
 
 namespace frictionsim {
@@ -29,6 +30,8 @@ struct HybridOutcome {
     StateArray<System> state{};
     system_mode_t<System> mode{};
     SolverStats stats;
+    double time = 0.0;     ///< t_end, or where a terminal stop condition ended the run
+    bool stopped = false;  ///< a terminal stop condition ended the run
 };
 
 /// Observer that ignores everything: the default when only the final state matters.
@@ -197,21 +200,52 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
     detail::ChatteringGuard chattering(options);
     detail::RunWatch watch(options);
     GuardArray<System, int> fired = make_guard_array<System, int>(sys);
-    StateArray<System> buffer = make_state_array(sys);
+    StateArray<System> buffer = make_state_array(sys), before_switch = make_state_array(sys);
     detail::ZeroGuardProbe<System> zero_guards(sys);
+    detail::StopWatch stops(sys, options.stop_conditions);
+    std::vector<double> stop_scratch(stops.any() ? N : 0);
+    HybridOutcome<System> out;
+    // A stop condition's crossing at t (state xs) into the log; a terminal one ends the run there.
+    auto stop_event = [&](double t, const double* xs, std::size_t k, int direction) {
+        Event e;
+        e.time = t;
+        e.switching_function = e.stop_condition = static_cast<int>(k);
+        e.name = stops.condition(k).name;
+        e.mode_before = e.mode_after = mode_code(sys, mode);
+        e.direction = direction;
+        if (options.record_event_states) e.state_before = e.state_after = std::vector<double>(xs, xs + N);
+        observer.event(e, t, xs);
+        if (stops.condition(k).terminal) out.stopped = true;
+    };
 
     // Resolve a switch at t (state x, guards `fired`), log it, restart; repeat while guards that sit at zero
     // after the restart head straight into their triggering side (cascading or simultaneous switches).
     auto handle_switch = [&](double t) {
+        if (options.record_event_rows && !options.record_steps) observer.step(t, x.data(), mode);
         do {
             const system_mode_t<System> before = mode;
+            if (options.record_event_states) std::copy(x.begin(), x.end(), before_switch.begin());
             mode = sys.switch_mode(t, x.data(), before, fired.data());
+            if (options.record_event_rows) observer.step(t, x.data(), mode);
             for (std::size_t i = 0; i < G; ++i) {
                 if (fired[i] == 0) continue;
                 const int from = guard_mode(sys, i, before), to = guard_mode(sys, i, mode);
-                Event e{t, static_cast<int>(i), sys.guard_name(i, before), from, to, sys.mode_name(from),
-                        sys.mode_name(to)};
+                Event e;
+                e.time = t;
+                e.switching_function = static_cast<int>(i);
+                e.name = sys.guard_name(i, before);
+                e.mode_before = from;
+                e.mode_after = to;
+                e.mode_before_name = sys.mode_name(from);
+                e.mode_after_name = sys.mode_name(to);
+                if (options.record_event_states) {
+                    e.state_before.assign(before_switch.begin(), before_switch.end());
+                    e.state_after.assign(x.begin(), x.end());
+                }
                 observer.event(e, t, x.data());
+                for (std::size_t k = stops.mode_condition(e.mode_after_name); k != detail::StopWatch::npos;
+                     k = stops.mode_condition(e.mode_after_name, k + 1))
+                    stop_event(t, x.data(), k, 0);
                 if (chattering.record(t)) {
                     std::ostringstream msg;
                     msg << "chattering: more than " << options.max_events_in_window << " switches within "
@@ -222,27 +256,57 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
                 }
             }
             integrator.restart(t, x.data(), mode);
-        } while (zero_guards.triggering(sys, t, x.data(), mode, fired));
+            stops.reset(x.data());
+        } while (!out.stopped && zero_guards.triggering(sys, t, x.data(), mode, fired));
     };
 
     detail::reporting_time(t0, [&] {
         integrator.restart(t0, x.data(), mode);
+        stops.reset(x.data());
         while (next_output < outputs.size() && outputs[next_output] <= t0) {
             observer.output(t0, x.data(), mode);
             ++next_output;
         }
         if (options.record_steps && next_output == 0) observer.step(t0, x.data(), mode);
         if (zero_guards.triggering(sys, t0, x.data(), mode, fired)) handle_switch(t0);
+        if (out.stopped) {  // a switch at the start into a mode a terminal condition names
+            observer.output(t0, x.data(), mode);
+            out.time = t0;
+        }
     });
 
-    while (integrator.time() < t_end) {
-        const StepResult s = detail::reporting_time(integrator.time(), [&] { return integrator.step(t_end); });
-        detail::reporting_time(s.t, [&] {  // the observer evaluates the model too (friction force)
-            while (next_output < outputs.size() && outputs[next_output] <= s.t) {
-                integrator.interpolate(outputs[next_output], buffer.data());
-                observer.output(outputs[next_output], buffer.data(), mode);
-                ++next_output;
+    // The requested outputs up to t, from the dense output.
+    auto emit_outputs = [&](double t) {
+        while (next_output < outputs.size() && outputs[next_output] <= t) {
+            integrator.interpolate(outputs[next_output], buffer.data());
+            observer.output(outputs[next_output], buffer.data(), mode);
+            ++next_output;
+        }
+    };
+    // The user's state conditions crossed within the last step, up to the first terminal one; true when that
+    // ended the run (its last row the state where the condition held).
+    auto stopped_within_step = [&](double t_step) {
+        return detail::reporting_time(t_step, [&] {
+            for (const detail::StopWatch::Crossing& c : stops.after_step(integrator, stop_scratch)) {
+                if (c.time < integrator.time()) integrator.interpolate(c.time, x.data());
+                else std::copy(integrator.state(), integrator.state() + N, x.begin());
+                stop_event(c.time, x.data(), c.condition, c.direction);
+                if (!out.stopped) continue;
+                emit_outputs(c.time);
+                observer.output(c.time, x.data(), mode);
+                out.time = c.time;
+                return true;
             }
+            return false;
+        });
+    };
+
+    const bool watching = stops.any();
+    while (!out.stopped && integrator.time() < t_end) {
+        const StepResult s = detail::reporting_time(integrator.time(), [&] { return integrator.step(t_end); });
+        if (watching && stopped_within_step(s.t)) break;
+        detail::reporting_time(s.t, [&] {  // the observer evaluates the model too (friction force)
+            emit_outputs(s.t);
             if (options.record_steps) observer.step(s.t, integrator.state(), mode);
         });
         if (s.root) {
@@ -251,12 +315,21 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
             const int* roots = integrator.roots();
             for (std::size_t i = 0; i < G; ++i) fired[i] = roots[i];  // (std::copy: GCC 12 warns on a 0-size array)
             detail::reporting_time(s.t, [&] { handle_switch(s.t); });
+            if (out.stopped) {  // a switch into a mode a terminal condition names
+                observer.output(s.t, x.data(), mode);
+                out.time = s.t;
+                break;
+            }
         }
         watch.after_step(s.t);  // after the step's outputs: a stop here keeps everything up to s.t
     }
-    HybridOutcome<System> out;
     out.state = make_state_array(sys);
-    std::copy(integrator.state(), integrator.state() + N, out.state.begin());
+    if (out.stopped) {
+        std::copy(x.begin(), x.end(), out.state.begin());
+    } else {
+        out.time = t_end;
+        std::copy(integrator.state(), integrator.state() + N, out.state.begin());
+    }
     for (double xi : out.state)  // NaN is never success, recorded or not
         if (!std::isfinite(xi)) throw SimulationError("non-finite final state at t = " + std::to_string(t_end) + " s",
                                                       integrator.previous_time());

@@ -11,6 +11,7 @@
 #include "../detail/validate.hpp"
 #include "hybrid_system.hpp"
 #include "jacobian.hpp"
+#include "stop_conditions.hpp"
 
 namespace frictionsim {
 
@@ -76,6 +77,12 @@ struct SolverOptions {
     double initial_step = 0.0;           ///< 0: the integrator chooses
     std::vector<double> output_times;    ///< increasing; states are interpolated there (dense output)
     bool record_steps = false;           ///< also record the state after every internal step
+    /// Rows at both sides of every switch (time of the switch, state and mode before, then after), so that
+    /// jumps are not smeared on an output grid.
+    bool record_event_rows = false;
+    bool record_event_states = true;     ///< each Event keeps the state before and after its switch
+    /// The user's stop conditions (SciPy's `events`): a state crossing a level, or a switch into a named mode.
+    std::vector<StopCondition> stop_conditions;
     /// Chattering / Zeno bound: more than max_events_in_window switches within event_window seconds stops the run.
     int max_events_in_window = 100;
     double event_window = 1e-6;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "../error.hpp"
 #include "options.hpp"
@@ -42,14 +43,23 @@ public:
     }
     void step(double t, const double* x, const system_mode_t<System>& mode) { output(t, x, mode); }
     void event(const Event& e, double t, const double*) {
-        if (result_->events.size() >= max_rows_) over_budget(t, "events");
-        result_->events.push_back(e);
+        std::vector<Event>& log = e.stop_condition >= 0 ? result_->stop_events : result_->events;
+        if (log.size() >= max_rows_) over_budget(t, "events");
+        log.push_back(e);
     }
 
     /// Marks how the run ended and hands the result over (shared, so an exception can carry it too).
-    std::shared_ptr<Result> finish(bool completed, double t_reached, const SolverStats& stats = {}) {
+    std::shared_ptr<Result> finish(bool completed, double t_reached, const SolverStats& stats = {},
+                                   bool stopped = false) {
         result_->completed = completed;
         result_->t_reached = t_reached;
+        result_->status = !completed ? -1 : stopped ? 1 : 0;
+        if (!completed)
+            result_->message = "the run stopped early at t = " + std::to_string(t_reached) + " s (see the error)";
+        else if (stopped)
+            result_->message = "a terminal stop condition (" + result_->stop_events.back().name + ") ended the run";
+        else
+            result_->message = "the run reached t_end";
         result_->stats = stats;
         result_->stats.events = static_cast<long>(result_->events.size());
         return result_;

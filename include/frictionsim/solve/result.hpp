@@ -9,15 +9,21 @@
 
 namespace frictionsim {
 
-/// One switch of the hybrid system: which switching function fired and the modes around it.
+/// One switch of the hybrid system (which switching function fired, the modes and states around it), or one
+/// crossing of a user's stop condition (solve/stop_conditions.hpp).
 struct Event {
     double time = 0.0;
-    int switching_function = -1;  ///< index of the guard that fired
+    int switching_function = -1;  ///< index of the guard that fired; for a stop condition, the condition's index
     std::string name;             ///< its name, e.g. "relative_velocity"
     int mode_before = 0;
     int mode_after = 0;
     std::string mode_before_name;
     std::string mode_after_name;
+    /// The state just before the switch and just after it (a switch may project it, e.g. a speed set to exactly
+    /// zero on entering stick); empty when SolverOptions::record_event_states is off.
+    std::vector<double> state_before, state_after;
+    int stop_condition = -1;  ///< >= 0: this is a stop condition's crossing (Result::stop_events), not a switch
+    int direction = 0;        ///< a stop condition's crossing: -1 falling, +1 rising
 };
 
 struct SolverStats {
@@ -37,8 +43,12 @@ struct Result {
     std::vector<double> friction_force;  ///< N (or N m for torsional rigs), one per row
     std::vector<int> mode;               ///< mode at each row
     std::vector<Event> events;
+    std::vector<Event> stop_events;      ///< crossings of SolverOptions::stop_conditions, in time order
     SolverStats stats;
     bool completed = false;              ///< false when the run stopped early (see SimulationError)
+    /// SciPy's solve_ivp status: 0 reached t_end, 1 a terminal stop condition ended the run, -1 failed.
+    int status = 0;
+    std::string message;                 ///< what `status` means for this run, in words
     std::vector<std::string> warnings;   ///< why a completed result may be unreliable (e.g. a loose rtol)
     double t_reached = 0.0;
 

@@ -39,11 +39,13 @@ Result simulate_with(const System& system, double t_end, const SolverOptions& op
                               options.max_output_rows);
     try {
         auto outcome = integrate_hybrid<Integrator>(system, system.initial_state(), t_start, t_end, *opts, recorder);
-        Result result = std::move(*recorder.finish(true, t_end, outcome.stats));
+        Result result = std::move(*recorder.finish(true, outcome.time, outcome.stats, outcome.stopped));
         if (options.rtol > SolverOptions::reliable_rtol) result.warnings.push_back(loose_tolerance_warning(options.rtol));
         return result;
     } catch (SimulationError& e) {
-        e.attach_partial(recorder.finish(false, e.time_reached()));
+        const std::shared_ptr<Result> partial = recorder.finish(false, e.time_reached());
+        partial->message = e.what();
+        e.attach_partial(partial);
         throw;
     }
     }
