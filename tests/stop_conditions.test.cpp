@@ -53,6 +53,23 @@ struct UpDown {
     std::array<double, 1> initial_state() const { return {0.0}; }
 };
 
+/// UpDown sized at run time, as a drill string is.
+struct UpDownAtRunTime {
+    UpDown fixed;
+    std::size_t state_size() const { return 1; }
+    std::size_t guard_count() const { return 1; }
+    void rhs(double t, const double* x, int mode, double* dx) const { fixed.rhs(t, x, mode, dx); }
+    void guards(double t, const double* x, int mode, double* g) const { fixed.guards(t, x, mode, g); }
+    int guard_direction(std::size_t i, int mode) const { return fixed.guard_direction(i, mode); }
+    const char* guard_name(std::size_t i, int mode) const { return fixed.guard_name(i, mode); }
+    int initial_mode(double t, const double* x) const { return fixed.initial_mode(t, x); }
+    int switch_mode(double t, double* x, int mode, const int* fired) const { return fixed.switch_mode(t, x, mode, fired); }
+    const char* mode_name(int mode) const { return fixed.mode_name(mode); }
+    std::vector<const char*> state_names() const { return {"x"}; }
+    double friction_force(double, const double*, int) const { return 0.0; }
+    std::vector<double> initial_state() const { return {0.0}; }
+};
+
 std::vector<Method> methods() {
     std::vector<Method> m{Method::dormand_prince, Method::cvode_bdf, Method::cvode_adams};
 #if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
@@ -156,6 +173,14 @@ TEST_CASE("events carry the state before and after the switch; record_event_rows
     const Result plain = simulate(UpDown{}, 3.0, o);
     CHECK(plain.rows() == 5);
     CHECK(plain.events[0].state_before.empty());
+
+    // a system sized at run time (a string: thousands of switches of its whole state) keeps none unless asked
+    o.record_event_states.reset();
+    const Result string_like = simulate(UpDownAtRunTime{}, 3.0, o);
+    REQUIRE(string_like.events.size() == 2);
+    CHECK(string_like.events[0].state_after.empty());
+    o.record_event_states = true;
+    CHECK(simulate(UpDownAtRunTime{}, 3.0, o).events[0].state_after == std::vector<double>{1.0});
 }
 
 TEST_CASE("stop conditions: bad conditions are refused naming the field", "[stop]") {

@@ -791,7 +791,7 @@ class SolverOptions:
     linear_solver: LinearSolver
     method: Method
     record_event_rows: bool
-    record_event_states: bool
+    record_event_states: bool | None
     record_steps: bool
     def __init__(self) -> None:
         ...

@@ -37,7 +37,7 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              event_window: float = SOLVER_DEFAULTS.event_window, t_start: float = 0.0,
              timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
              events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
-             record_event_states: bool = SOLVER_DEFAULTS.record_event_states) -> Result:
+             record_event_states: Optional[bool] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
@@ -84,8 +84,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     record_events : bool
         Also put rows at both sides of every switch (its time, with the state and mode before, then after), so
         that jumps are not smeared on the output grid.
-    record_event_states : bool
-        Keep the state before and after each switch on its :class:`Event` (``events_frame()``).
+    record_event_states : bool, optional
+        Keep the state before and after each switch on its :class:`Event` (``events_frame()``). Default: yes for
+        the lab rigs, no for a StringRig (its whole state at each of thousands of switches).
 
     Raises
     ------
@@ -127,7 +128,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     conditions = _stop_conditions(events)
     options.stop_conditions = conditions
     options.record_event_rows = _flag("record_events", record_events)
-    options.record_event_states = _flag("record_event_states", record_event_states)
+    if record_event_states is not None:
+        options.record_event_states = _flag("record_event_states", record_event_states)
     try:
         raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))
     except SimulationError as error:

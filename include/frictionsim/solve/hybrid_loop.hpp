@@ -205,6 +205,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
     detail::StopWatch stops(sys, options.stop_conditions);
     std::vector<double> stop_scratch(stops.any() ? N : 0);
     HybridOutcome<System> out;
+    const bool keep_states = options.record_event_states.value_or(has_fixed_size_v<System>);
     // A stop condition's crossing at t (state xs) into the log; a terminal one ends the run there.
     auto stop_event = [&](double t, const double* xs, std::size_t k, int direction) {
         Event e;
@@ -213,7 +214,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
         e.name = stops.condition(k).name;
         e.mode_before = e.mode_after = mode_code(sys, mode);
         e.direction = direction;
-        if (options.record_event_states) e.state_before = e.state_after = std::vector<double>(xs, xs + N);
+        if (keep_states) e.state_before = e.state_after = std::vector<double>(xs, xs + N);
         observer.event(e, t, xs);
         if (stops.condition(k).terminal) out.stopped = true;
     };
@@ -224,7 +225,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
         if (options.record_event_rows && !options.record_steps) observer.step(t, x.data(), mode);
         do {
             const system_mode_t<System> before = mode;
-            if (options.record_event_states) std::copy(x.begin(), x.end(), before_switch.begin());
+            if (keep_states) std::copy(x.begin(), x.end(), before_switch.begin());
             mode = sys.switch_mode(t, x.data(), before, fired.data());
             if (options.record_event_rows) observer.step(t, x.data(), mode);
             for (std::size_t i = 0; i < G; ++i) {
@@ -238,7 +239,7 @@ HybridOutcome<System> integrate_hybrid(const System& sys, StateArray<System> x, 
                 e.mode_after = to;
                 e.mode_before_name = sys.mode_name(from);
                 e.mode_after_name = sys.mode_name(to);
-                if (options.record_event_states) {
+                if (keep_states) {
                     e.state_before.assign(before_switch.begin(), before_switch.end());
                     e.state_after.assign(x.begin(), x.end());
                 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -80,7 +81,10 @@ struct SolverOptions {
     /// Rows at both sides of every switch (time of the switch, state and mode before, then after), so that
     /// jumps are not smeared on an output grid.
     bool record_event_rows = false;
-    bool record_event_states = true;     ///< each Event keeps the state before and after its switch
+    /// Each Event keeps the state before and after its switch. Unset: yes for fixed-size systems (the lab rigs),
+    /// no for systems sized at run time (a string's whole state at each of its thousands of switches would be
+    /// gigabytes).
+    std::optional<bool> record_event_states;
     /// The user's stop conditions (SciPy's `events`): a state crossing a level, or a switch into a named mode.
     std::vector<StopCondition> stop_conditions;
     /// Chattering / Zeno bound: more than max_events_in_window switches within event_window seconds stops the run.
