@@ -10,7 +10,14 @@
 //   top drive: node 0 carries I_TD, driven by tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10);
 //              continuous, that is a damper k_p and a spring k_i to the set-point angle (the top row of C and K),
 //              or sampled with a zero-order hold (A&S's MAIN.m: every 0.01 s);
-//   bit:       off bottom: node N carries an optional BHA inertia and a constant bit torque (0 off bottom).
+//   bit:       off bottom: node N carries an optional BHA inertia and a constant bit torque (0 off bottom); on
+//              bottom (weight_on_bit > 0): the velocity-weakening bit of Navarro-Lopez and Cortes (2007,
+//              NavarroLopezBit of bit_rock.hpp) at node N, merged with node N's wall contact into one contact (both
+//              act on the same dof: the bounds add), its slip level taken at the speed predicted for each step's
+//              middle (LumpedFriction's rule, moreau_jean_events.hpp: second order where the start's is first).
+//              Its treatment is a run option: captured by Moreau-Jean with the walls, or exact (its stick <-> slip
+//              located and restarted by solve/moreau_jean_events.hpp, the walls still captured); c_b is a linear
+//              damper at N.
 // The closed forms of A&S sec. 4 come with it: break-off torque (eq 27), minimum torque (eq 30), the twist at the
 // top drive (eq 29 at x = 0), build-up time (eq 34) and period estimate (eq 40) with the string's fundamental
 // period (the continuous string's lowest mode, top held, by transfer matrices).
@@ -30,6 +37,8 @@
 #include "../detail/constants.hpp"
 #include "../parameters.hpp"
 #include "../solve/moreau_jean.hpp"
+#include "../solve/moreau_jean_events.hpp"
+#include "bit_rock.hpp"
 #include "sections.hpp"
 
 namespace frictionsim {
@@ -50,11 +59,12 @@ struct TorsionalStringParams {
     double bha_inertia = 0.0;                    ///< kg m^2 lumped on the bit node, beyond the sections'
     double bit_torque = 0.0;                     ///< N m against the rotation at the bit; off bottom 0
     double gravity = 9.81;                       ///< m/s^2
+    double weight_on_bit = 0.0;                  ///< W, N: > 0 puts the velocity-weakening bit on bottom
 
-    static constexpr std::array<Field<TorsionalStringParams>, 15> fields();
+    static constexpr std::array<Field<TorsionalStringParams>, 16> fields();
 };
 
-inline constexpr std::array<Field<TorsionalStringParams>, 15> TorsionalStringParams::fields() {
+inline constexpr std::array<Field<TorsionalStringParams>, 16> TorsionalStringParams::fields() {
     using P = TorsionalStringParams;
     return {{
         {"top_drive_inertia", "I_TD", "kg m^2", Rule::positive(), &P::top_drive_inertia, "Top drive inertia."},
@@ -79,6 +89,8 @@ inline constexpr std::array<Field<TorsionalStringParams>, 15> TorsionalStringPar
         {"bha_inertia", "J_BHA", "kg m^2", Rule::non_negative(), &P::bha_inertia, "Inertia lumped on the bit."},
         {"bit_torque", "T_b", "N m", Rule::non_negative(), &P::bit_torque, "Torque on bit; off bottom 0."},
         {"gravity", "g", "m/s^2", Rule::positive(), &P::gravity, "Acceleration of gravity."},
+        {"weight_on_bit", "W", "N", Rule::non_negative(), &P::weight_on_bit,
+         "Weight on bit of the velocity-weakening bit at node N; 0: off bottom."},
     }};
 }
 
@@ -104,8 +116,15 @@ struct TorsionalStringRun {
     std::vector<double> top_drive_speed;  ///< rad/s, node 0
     std::vector<double> motor_torque;     ///< N m, tau_m
     std::vector<double> stuck_fraction;   ///< nodes at rest (v == 0 exactly; or |v| < slow_speed if set)
+    std::vector<double> bit_stick_times;    ///< s: the on-bottom bit comes to rest (captured: the step's end)
+    std::vector<double> bit_release_times;  ///< s: the on-bottom bit breaks loose
     MoreauJean::Statistics statistics;
+    long bit_location_trials = 0;  ///< exact bit: trial steps that located its switches
 };
+
+/// How the on-bottom bit's stick and slip are treated: a contact of the Moreau-Jean inclusion like the walls, or a
+/// lumped element whose switches are located exactly (solve/moreau_jean_events.hpp).
+enum class BitTreatment { captured, exact };
 
 struct TorsionalStringRunOptions {
     double t_end = 60.0;
@@ -115,15 +134,20 @@ struct TorsionalStringRunOptions {
     double slow_speed = 0.0;       ///< > 0: count |omega| < slow_speed as stuck (A&S's stick band, 1.5 rad/s)
     ContactTreatment treatment = ContactTreatment::inclusion;
     double projection_band = 0.0;
+    BitTreatment bit_treatment = BitTreatment::captured;
+    double switch_tolerance = 1e-10;  ///< s: exact bit, its switches located within it
     std::function<bool()> interrupt;
 };
 
 class TorsionalString {
 public:
     /// `contact_radius`: one per section (m), empty: each section's OD / 2. `survey`: empty: params.inclination.
+    /// `bit`: the law of the on-bottom bit (used when params.weight_on_bit > 0).
     TorsionalString(DrillString string, TorsionalStringParams params, std::size_t elements,
-                    InclinationSurvey survey = {}, std::vector<double> contact_radius = {})
-        : string_(std::move(string)), p_(params), survey_(std::move(survey)), radius_(std::move(contact_radius)) {
+                    InclinationSurvey survey = {}, std::vector<double> contact_radius = {},
+                    NavarroLopezBit bit = NavarroLopezBit{})
+        : string_(std::move(string)), p_(params), survey_(std::move(survey)), radius_(std::move(contact_radius)),
+          bit_(std::move(bit)) {
         validate_fields("TorsionalString", p_, TorsionalStringParams::fields());
         const auto& sections = string_.sections();
         if (radius_.empty())
@@ -162,6 +186,23 @@ public:
     std::size_t nodes() const { return lumped_.node_inertia.size(); }
     /// Static torque bound of each node's wall contact [N m] (kinetic: kinetic_ratio times it).
     const std::vector<double>& static_friction_torque() const { return static_torque_; }
+    const NavarroLopezBit& bit_law() const { return bit_; }
+    bool bit_on_bottom() const { return p_.weight_on_bit > 0.0; }
+    /// Node N's static bound with the bit on bottom [N m]: its wall's plus R_b W mu_sb.
+    double bit_static_torque() const { return static_torque_.back() + bit_.static_limit(p_.weight_on_bit); }
+    /// Node N's slip level at bit speed |w| [N m]: its wall's kinetic (static inside the stick band, A&S eq 4) plus
+    /// R_b W mu_b(|w|) (c_b w is the damper at N).
+    double bit_kinetic_torque(double speed) const {
+        const double wall = static_torque_.back() *
+                            (std::abs(speed) < p_.stick_band_speed ? 1.0 : p_.kinetic_ratio);
+        return wall + bit_.params().bit_radius * p_.weight_on_bit * bit_.coefficient(speed);
+    }
+    /// The bit (with node N's wall) as a lumped element of the mixed treatment.
+    LumpedFriction bit_element() const {
+        const TorsionalString self = *this;
+        return LumpedFriction(nodes() - 1, bit_static_torque(),
+                              [self](double speed) { return self.bit_kinetic_torque(speed); }, "bit");
+    }
 
     /// F_c(x) of A&S eq 6 [N m/m]: mu sin(inc) g rho A (1 - rho_mud / rho) r_o at measured depth x.
     double wall_friction_per_length(double x) const {
@@ -233,7 +274,9 @@ public:
 
     /// M v' = f(t) - C v - K q + r over the N + 1 node angles, the wall contacts on the nodes with friction. With a
     /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0; sampled, f_0 reads `held_motor_torque`.
-    LinearMechanicalSystem system(const double* held_motor_torque = nullptr) const {
+    /// On bottom, node N's contact is the bit's with its wall's (captured) or absent (`with_bit_contact` false: the
+    /// bit is the lumped element bit_element()); c_b sits in C(N, N).
+    LinearMechanicalSystem system(const double* held_motor_torque = nullptr, bool with_bit_contact = true) const {
         const Eigen::Index n = static_cast<Eigen::Index>(nodes());
         std::vector<Eigen::Triplet<double>> m, c, k;
         for (Eigen::Index i = 0; i < n; ++i) {
@@ -241,6 +284,8 @@ public:
             m.emplace_back(i, i, j + (i == 0 ? p_.top_drive_inertia : 0.0) + (i == n - 1 ? p_.bha_inertia : 0.0));
             if (p_.damping_rate > 0.0) c.emplace_back(i, i, p_.damping_rate * j);
         }
+        if (bit_on_bottom() && bit_.params().viscous_damping > 0.0)
+            c.emplace_back(n - 1, n - 1, bit_.params().viscous_damping);
         for (Eigen::Index e = 0; e + 1 < n; ++e) {
             const double ke = lumped_.torsional_stiffness[static_cast<std::size_t>(e)];
             k.emplace_back(e, e, ke);
@@ -273,10 +318,17 @@ public:
                 f(0) = p.proportional_gain * self.setpoint_speed(t) + p.integral_gain * self.setpoint_angle(t);
                 f(f.size() - 1) = -bit;
             };
-        for (std::size_t i = 0; i < nodes(); ++i)
+        const std::size_t last = nodes() - 1;
+        for (std::size_t i = 0; i < nodes(); ++i) {
+            if (bit_on_bottom() && i == last) {
+                if (with_bit_contact)  // at rest: the static level; set_contact_bounds moves it each step
+                    sys.contacts.push_back(PointContact{i, bit_static_torque(), bit_kinetic_torque(0.0), 0.0, 0.0});
+                continue;
+            }
             if (static_torque_[i] > 0.0)
                 sys.contacts.push_back(PointContact{i, static_torque_[i], p_.kinetic_ratio * static_torque_[i],
                                                     static_torque_[i], p_.stick_band_speed});
+        }
         return sys;
     }
 
@@ -286,10 +338,17 @@ public:
         detail::require_positive(who, "t_end", run.t_end);
         detail::require_positive(who, "step", run.step);
         detail::require_non_negative(who, "slow_speed", run.slow_speed);
+        detail::require_positive(who, "switch_tolerance", run.switch_tolerance);
         const long per_output = steps_per(who, "output_interval", run.output_interval, run.step);
         const bool sampled = p_.control_period > 0.0;
         const long per_control =
             sampled ? steps_per("TorsionalString", "control_period", p_.control_period, run.step) : 0;
+        if (bit_on_bottom() && run.bit_treatment == BitTreatment::exact) {
+            if (sampled)  // the hold's sampling instants would be switches of their own
+                detail::reject("TorsionalString", "control_period", "0 (a continuous PI) with the exact bit",
+                               p_.control_period);
+            return simulate_exact_bit(run, per_output);
+        }
 
         MoreauJeanOptions o;
         o.step = run.step;
@@ -301,6 +360,9 @@ public:
         double held = 0.0, setpoint = 0.0, integral = 0.0;
         const Eigen::Index n = static_cast<Eigen::Index>(nodes());
         MoreauJean mj(system(sampled ? &held : nullptr), o, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
+        const std::size_t bit_contact = mj.system().contacts.size() - 1;  // on bottom: node N's, the last
+        const std::size_t bit_contact_dof = nodes() - 1;
+        Eigen::VectorXd scratch;
 
         TorsionalStringRun out;
         const long total = std::lround(run.t_end / run.step);
@@ -326,13 +388,67 @@ public:
                 out.stuck_fraction.push_back(static_cast<double>(stuck) / static_cast<double>(n));
             }
             if (k == total) break;
-            mj.step();
+            if (bit_on_bottom()) {  // the bit's slip level at the step's midpoint speed (LumpedFriction's rule)
+                const double w = v(n - 1);
+                double level = bit_kinetic_torque(w);
+                if (w != 0.0) {
+                    const MechanicalView at(t, mj.positions(), v, mj.contact_forces(), mj.system(), scratch);
+                    const double dir = w > 0.0 ? 1.0 : -1.0;
+                    const double mid = w + 0.5 * run.step * (at.load(bit_contact_dof) - dir * level) /
+                                               mj.system().mass.coeff(n - 1, n - 1);
+                    level = bit_kinetic_torque(std::max(0.0, dir * mid));
+                }
+                mj.set_contact_bounds(bit_contact, bit_static_torque(), level);
+                mj.step();
+                const double after = mj.velocities()(n - 1);
+                if (w != 0.0 && after == 0.0) out.bit_stick_times.push_back(mj.time());
+                if (w == 0.0 && after != 0.0) out.bit_release_times.push_back(mj.time() - run.step);
+            } else {
+                mj.step();
+            }
         }
         out.statistics = mj.statistics();
         return out;
     }
 
 private:
+    /// The bit as the lumped element of MoreauJeanEvents, the walls captured; outputs interpolated between steps.
+    TorsionalStringRun simulate_exact_bit(const TorsionalStringRunOptions& run, long per_output) const {
+        MoreauJeanEventsOptions o;
+        o.steps.step = run.step;
+        o.steps.theta = run.theta;
+        o.steps.treatment = run.treatment;
+        o.steps.projection_band = run.projection_band;
+        o.steps.interrupt = run.interrupt;
+        o.time_tolerance = run.switch_tolerance;
+        const long total = std::lround(run.t_end / run.step);
+        for (long k = 0; k <= total; k += per_output) o.output_times.push_back(static_cast<double>(k) * run.step);
+        const Eigen::Index n = static_cast<Eigen::Index>(nodes());
+        MoreauJeanEvents<LumpedFriction> driver(system(nullptr, false), {bit_element()}, std::move(o),
+                                                Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
+        TorsionalStringRun out;
+        driver.run(static_cast<double>(total) * run.step, [&](double t, const Eigen::VectorXd& q,
+                                                              const Eigen::VectorXd& v) {
+            out.time.push_back(t);
+            out.bit_speed.push_back(v(n - 1));
+            out.top_drive_speed.push_back(v(0));
+            out.motor_torque.push_back(p_.proportional_gain * (setpoint_speed(t) - v(0)) +
+                                       p_.integral_gain * (setpoint_angle(t) - q(0)));
+            Eigen::Index stuck = 0;
+            for (Eigen::Index i = 0; i < n; ++i)
+                stuck += (run.slow_speed > 0.0 ? std::abs(v(i)) < run.slow_speed : v(i) == 0.0) ? 1 : 0;
+            out.stuck_fraction.push_back(static_cast<double>(stuck) / static_cast<double>(n));
+        });
+        for (const LumpedEvent& e : driver.events()) {
+            if (e.mode_after == 0) out.bit_stick_times.push_back(e.time);
+            if (e.mode_before == 0) out.bit_release_times.push_back(e.time);
+        }
+        const auto stats = driver.statistics();
+        out.statistics = stats.steps;
+        out.bit_location_trials = stats.trial_steps;
+        return out;
+    }
+
     static long steps_per(const char* who, const char* name, double interval, double step) {
         detail::require_positive(who, name, interval);
         const double ratio = interval / step;
@@ -385,6 +501,7 @@ private:
     std::vector<double> radius_;
     LumpedString lumped_;
     std::vector<double> static_torque_;
+    NavarroLopezBit bit_;
 };
 
 /// The collar polar moment of A&S's parameters_WellB.m: its line p.Jc = pi * sum(L pi (OD^4 - ID^4) / 32) / sum(L)
