@@ -455,3 +455,75 @@ TEST_CASE("soft string: bad parameters and geometry are refused naming them", "[
     CHECK(rejected_parameter([&] { (void)SoftString(survey, drill_string, 0); }) == "elements");
     CHECK_NOTHROW(string.run(Operation::rotary_drilling, SoftStringParams{}));  // the defaults obey the table
 }
+
+TEST_CASE("soft string: per-element friction multipliers scale each element's axial and circumferential friction",
+          "[soft_string]") {
+    // a straight inclined pipe: the drag is mu w sin I summed over the elements, each times its axial multiplier;
+    // reaming, the torque is mu w sin I r (omega r / |q|) summed, each times its circumferential multiplier
+    const double inclination = 70.0 * deg, length = 2000.0, mu = 0.3, r = 0.127 / 2;
+    const Survey survey({{0.0, inclination, 0.0}, {length, inclination, 0.0}});
+    const PipeSection dp = pipe(length);
+    const SoftString string(survey, DrillString({dp}), 200);
+    SoftStringParams p = open_hole(mu);
+    const double w = buoyed(dp, p.mud_density), dx = 10.0;
+    FrictionMultipliers m;
+    m.axial.assign(200, 1.0);
+    m.circumferential.assign(200, 1.0);
+    for (Operation op : {Operation::trip_out, Operation::reaming, Operation::rotary_drilling}) {
+        const TorqueDragResult plain = string.run(op, p);
+        const TorqueDragResult ones = string.run(op, p, m), empty = string.run(op, p, FrictionMultipliers{});
+        CHECK(ones.tension == plain.tension);  // bit for bit
+        CHECK(ones.torque == plain.torque);
+        CHECK(empty.tension == plain.tension);
+    }
+    double axial_sum = 0.0, circumferential_sum = 0.0;
+    for (std::size_t e = 0; e < 200; ++e) {
+        m.axial[e] = e >= 80 && e < 140 ? 0.1 + 0.01 * static_cast<double>(e - 80) : 1.0;
+        m.circumferential[e] = e < 50 ? 0.5 : 1.0;
+        axial_sum += m.axial[e] * dx;
+        circumferential_sum += m.circumferential[e] * dx;
+    }
+    const double ratio = 1.0 / std::sqrt(1.0 + std::pow(p.rotary_speed * r / p.trip_speed, 2));  // v / |q|
+    const TorqueDragResult out = string.run(Operation::trip_out, p, m);
+    CHECK(out.hook_load() ==
+          Approx(w * length * std::cos(inclination) + mu * w * std::sin(inclination) * axial_sum).epsilon(1e-12));
+    const TorqueDragResult down = string.run(Operation::reaming, p, m);
+    CHECK(w * length * std::cos(inclination) - down.hook_load() ==
+          Approx(mu * w * std::sin(inclination) * ratio * axial_sum).epsilon(1e-11));
+    CHECK(down.surface_torque() ==
+          Approx(mu * w * std::sin(inclination) * r * std::sqrt(1.0 - ratio * ratio) * circumferential_sum)
+              .epsilon(1e-12));
+
+    FrictionMultipliers bad;
+    bad.axial.assign(199, 1.0);
+    CHECK(rejected_parameter([&] { (void)string.run(Operation::trip_in, p, bad); }) == "friction_multipliers.axial");
+    bad.axial.clear();
+    bad.circumferential.assign(200, 1.0);
+    bad.circumferential[3] = -0.5;
+    CHECK(rejected_parameter([&] { (void)string.run(Operation::trip_in, p, bad); }) ==
+          "friction_multipliers.circumferential[3]");
+    bad.circumferential[3] = std::nan("");
+    CHECK(rejected_parameter([&] { (void)string.run(Operation::trip_in, p, bad); }) ==
+          "friction_multipliers.circumferential[3]");
+}
+
+TEST_CASE("soft string: the operations' kinematics", "[soft_string]") {
+    SoftStringParams p;
+    p.weight_on_bit = 70e3;
+    p.bit_torque = 4e3;
+    const OperationKinematics sliding = operation_kinematics(Operation::sliding_drilling, p);
+    CHECK(sliding.direction == -1.0);
+    CHECK(sliding.axial_speed == p.rate_of_penetration);
+    CHECK(sliding.rotary_speed == 0.0);
+    CHECK(sliding.bit_force == -70e3);
+    CHECK(sliding.bit_torque == 0.0);
+    const OperationKinematics back = operation_kinematics(Operation::backreaming, p);
+    CHECK(back.direction == 1.0);
+    CHECK(back.axial_speed == p.trip_speed);
+    CHECK(back.rotary_speed == p.rotary_speed);
+    CHECK(back.bit_force == 0.0);
+    const OperationKinematics rotating = operation_kinematics(Operation::rotating_off_bottom, p);
+    CHECK(rotating.direction == 0.0);
+    CHECK(rotating.axial_speed == 0.0);
+    CHECK(operation_kinematics(Operation::rotary_drilling, p).bit_torque == 4e3);
+}

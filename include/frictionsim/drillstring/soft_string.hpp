@@ -17,6 +17,8 @@
 // which is why rotation cuts drag.
 // Buoyancy: same mud inside and out, W = g (m - rho_mud V) (the buoyancy-factor form): the tension is the effective
 // tension, zero at a bit off bottom, -WOB on bottom; at the surface it is the hook load (less the block weight).
+// Per-element friction multipliers (FrictionMultipliers) scale each element's axial and circumferential friction:
+// what a cycle average under axial vibration gives (oscillator_drag.hpp); all ones reproduce the plain run exactly.
 #pragma once
 
 #include <algorithm>
@@ -125,6 +127,51 @@ struct TorqueDragResult {
     double surface_torque() const { return torque.front(); }  ///< N m
 };
 
+/// What an operation imposes: the direction of axial motion (+1 out of the hole, -1 in, 0 none), the axial and
+/// rotary speeds, and the bit's loads (the table in Operation's comment).
+struct OperationKinematics {
+    double direction = 0.0;     ///< -1, 0 or +1
+    double axial_speed = 0.0;   ///< m/s, >= 0
+    double rotary_speed = 0.0;  ///< rad/s, >= 0
+    double bit_force = 0.0;     ///< effective tension at the bit, N (-WOB on bottom)
+    double bit_torque = 0.0;    ///< N m
+};
+
+inline OperationKinematics operation_kinematics(Operation op, const SoftStringParams& p) {
+    OperationKinematics k;
+    switch (op) {
+        case Operation::trip_in:
+        case Operation::trip_out:
+        case Operation::reaming:
+        case Operation::backreaming:
+            k.direction = op == Operation::trip_out || op == Operation::backreaming ? 1.0 : -1.0;
+            k.axial_speed = p.trip_speed;
+            if (op == Operation::reaming || op == Operation::backreaming) k.rotary_speed = p.rotary_speed;
+            break;
+        case Operation::rotating_off_bottom: k.rotary_speed = p.rotary_speed; break;
+        case Operation::sliding_drilling:
+            k.direction = -1.0;
+            k.axial_speed = p.rate_of_penetration;
+            k.bit_force = -p.weight_on_bit;
+            break;
+        case Operation::rotary_drilling:
+            k.direction = -1.0;
+            k.axial_speed = p.rate_of_penetration;
+            k.rotary_speed = p.rotary_speed;
+            k.bit_force = -p.weight_on_bit;
+            k.bit_torque = p.bit_torque;
+            break;
+    }
+    return k;
+}
+
+/// Per-element factors on the friction of the soft string (1: unchanged): `axial` scales the axial share
+/// mu v / |q|, `circumferential` the share mu omega r / |q|. An empty vector means 1 everywhere; otherwise one
+/// finite, non-negative value per element.
+struct FrictionMultipliers {
+    std::vector<double> axial, circumferential;
+};
+
 /// A drill string hung from measured depth 0 along a survey, cut into N elements of equal length (the nodes of
 /// DrillString::lump(N)), with the properties and geometry each element needs precomputed: each run() is one pass
 /// without allocation (when given a result to reuse).
@@ -192,6 +239,14 @@ public:
         return standard_gravity * (element_[e].mass - mud_density * element_[e].volume);
     }
 
+    /// Measured depth of element e's middle [m] and its contact radius (length-weighted OD / 2) [m].
+    double element_mid_depth(std::size_t e) const { return element_[e].mid_depth; }
+    double element_radius(std::size_t e) const { return element_[e].radius; }
+    /// The friction factor of element e: cased above the shoe (by its middle), open hole below.
+    static double friction_factor(double mid_depth, const SoftStringParams& p) {
+        return mid_depth < p.casing_shoe_depth ? p.cased_hole_friction : p.open_hole_friction;
+    }
+
     /// Wall contact force [N] of element e under tension F [N] (the expression in the header comment).
     double element_side_force(std::size_t e, double tension, double mud_density) const {
         return side_force(element_[e], tension, element_weight(e, mud_density));
@@ -199,6 +254,27 @@ public:
 
     /// One operation; out's vectors are resized once and reused by later calls.
     void run(Operation op, const SoftStringParams& p, TorqueDragResult& out) const {
+        run(op, p, nullptr, nullptr, out);
+    }
+
+    /// One operation with each element's friction scaled by `m` (FrictionMultipliers; checked: one finite,
+    /// non-negative value per element, or empty).
+    void run(Operation op, const SoftStringParams& p, const FrictionMultipliers& m, TorqueDragResult& out) const {
+        check_multipliers(m.axial, "axial");
+        check_multipliers(m.circumferential, "circumferential");
+        run(op, p, m.axial.empty() ? nullptr : m.axial.data(),
+            m.circumferential.empty() ? nullptr : m.circumferential.data(), out);
+    }
+
+    TorqueDragResult run(Operation op, const SoftStringParams& p, const FrictionMultipliers& m) const {
+        TorqueDragResult out;
+        run(op, p, m, out);
+        return out;
+    }
+
+private:
+    void run(Operation op, const SoftStringParams& p, const double* axial_multiplier,
+             const double* circumferential_multiplier, TorqueDragResult& out) const {
         validate_fields("SoftStringParams", p, SoftStringParams::fields());
         const std::size_t n = element_.size();
         out.operation = op;
@@ -213,30 +289,9 @@ public:
         out.helically_buckled.resize(n + 1);
 
         // the operation: direction of axial motion (+1 out of the hole), axial speed, rotation, bit loads
-        double direction = 0.0, axial_speed = 0.0, rotary_speed = 0.0, force = 0.0, torque = 0.0;
-        switch (op) {
-            case Operation::trip_in:
-            case Operation::trip_out:
-            case Operation::reaming:
-            case Operation::backreaming:
-                direction = op == Operation::trip_out || op == Operation::backreaming ? 1.0 : -1.0;
-                axial_speed = p.trip_speed;
-                if (op == Operation::reaming || op == Operation::backreaming) rotary_speed = p.rotary_speed;
-                break;
-            case Operation::rotating_off_bottom: rotary_speed = p.rotary_speed; break;
-            case Operation::sliding_drilling:
-                direction = -1.0;
-                axial_speed = p.rate_of_penetration;
-                force = -p.weight_on_bit;
-                break;
-            case Operation::rotary_drilling:
-                direction = -1.0;
-                axial_speed = p.rate_of_penetration;
-                rotary_speed = p.rotary_speed;
-                force = -p.weight_on_bit;
-                torque = p.bit_torque;
-                break;
-        }
+        const OperationKinematics kin = operation_kinematics(op, p);
+        const double direction = kin.direction, axial_speed = kin.axial_speed, rotary_speed = kin.rotary_speed;
+        double force = kin.bit_force, torque = kin.bit_torque;
         out.tension[n] = force;
         out.torque[n] = torque;
         for (std::size_t k = n; k-- > 0;) {  // from the bit up
@@ -246,12 +301,15 @@ public:
             const bool cased = el.mid_depth < p.casing_shoe_depth;
             const double mu = cased ? p.cased_hole_friction : p.open_hole_friction;
             double axial = 1.0, circumferential = 0.0;  // the friction vector's shares
-            if (rotary_speed > 0.0) {
-                const double surface_speed = rotary_speed * el.radius;
-                const double speed = std::sqrt(axial_speed * axial_speed + surface_speed * surface_speed);
+            const double surface_speed = rotary_speed * el.radius;
+            // hypot: at a tiny rotary speed (omega r)^2 underflows, and sqrt(v^2 + (omega r)^2) would give 0/0
+            const double speed = std::hypot(axial_speed, surface_speed);
+            if (rotary_speed > 0.0 && speed > 0.0) {
                 axial = axial_speed / speed;
                 circumferential = surface_speed / speed;
             }
+            if (axial_multiplier) axial *= axial_multiplier[k];  // times 1.0 is exact: no tool, the plain run
+            if (circumferential_multiplier) circumferential *= circumferential_multiplier[k];
             const double friction = mu * normal;
             force += weight * el.axial_share + direction * axial * friction;
             torque += circumferential * friction * el.radius;
@@ -278,6 +336,20 @@ public:
         }
     }
 
+    void check_multipliers(const std::vector<double>& m, const char* which) const {
+        if (m.empty()) return;
+        const std::string name = std::string("friction_multipliers.") + which;
+        if (m.size() != element_.size())
+            detail::reject("SoftString", name.c_str(),
+                           ("empty or one value per element (" + std::to_string(element_.size()) + ")").c_str(),
+                           static_cast<double>(m.size()));
+        for (std::size_t e = 0; e < m.size(); ++e)
+            if (!(std::isfinite(m[e]) && m[e] >= 0.0))
+                detail::reject("SoftString", (name + "[" + std::to_string(e) + "]").c_str(),
+                               "non-negative and finite", m[e]);
+    }
+
+public:
     TorqueDragResult run(Operation op, const SoftStringParams& p) const {
         TorqueDragResult out;
         run(op, p, out);
