@@ -1,7 +1,7 @@
 // A drill string on the event-driven engine (issue 13, item 3): the lumped string of sections.hpp (N elements,
 // node 0 at the top, node N at the bit), in torsion and optionally axially, sized at run time.
 //   J_i dw_i/dt = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
-//   m_i dv_i/dt = F_i - F_{i-1} + w_b,i cos I [- H at node 0] [+ F_x sin(2 pi f_x t) at node k] - F_wall,i [- W]
+//   m_i dv_i/dt = F_i - F_{i-1} + w_b,i cos I_i [- H at node 0] [+ F_x sin(2 pi f_x t) at node k] - F_wall,i [- W]
 //   tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e), and the same for the axial force F_e with E A / dx
 // (structural damping proportional to stiffness: modal damping ratio beta w / 2 at frequency w; positions and
 // axial speeds positive down the hole).
@@ -12,13 +12,16 @@
 //    sliding motion along T_m = T_max), the drive holds the limit with the integral following it,
 //    k_i dI/dt = k_p dw_0/dt; or a prescribed surface speed (w_0 = w_set held, the torque it takes recorded as work).
 //  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
-//  * wall contacts at chosen nodes with a normal force each (given, or the straight inclined hole's buoyed weight
-//    w_b sin I per node; w_b from the string's density minus the mud's). Torsion-only runs: any law of the
-//    library at the pipe's outer radius through DiscContact (contact/disc_contact.hpp: exact per-contact stick
-//    and slip, state laws' kinks); with axial motion the friction acts against the resultant sliding velocity
-//    (wall_contact.hpp, paper 000's friction vector). The string's contacts couple only through its springs and
-//    dampers, never rigidly, so the force that holds a stuck node is known from the state and each contact's
-//    stick condition is its own (no joint complementarity problem is needed at a switch).
+//  * the hole's inclination I_i at each node: the straight hole's, or given per node (a surveyed well:
+//    string_geometry.hpp builds the set-up from a Survey).
+//  * wall contacts at chosen nodes with a normal force each (given, e.g. the soft-string side forces of a curved
+//    well, or the node's buoyed weight w_b sin I_i; w_b from the string's density minus the mud's). Torsion-only
+//    runs: any law of the library at the pipe's outer radius through DiscContact (contact/disc_contact.hpp: exact
+//    per-contact stick and slip, state laws' kinks); with axial motion the friction acts against the resultant
+//    sliding velocity (wall_contact.hpp, paper 000's friction vector: stick caught at stick_speed, slow slip below
+//    it). The string's contacts couple only through its springs and dampers, never rigidly, so the force that
+//    holds a stuck node is known from the state and each contact's stick condition is its own (no joint
+//    complementarity problem is needed at a switch).
 //  * the bit (bit.hpp) at node N, any bit law in (bit speed, weight on bit) -> torque, through DiscContact.
 // States, node by node so that the Jacobian is banded: speed_error_integral, then per node theta_i, omega_i,
 // [u_i, v_i], [the wall law's states], then the bit law's states and six work integrals that close the balance
@@ -112,10 +115,16 @@ public:
         for (PipeSection& s : buoyed) s.density -= p_.mud_density;
         std::vector<double> buoyed_mass = DrillString(buoyed).lump(n).node_mass;
         buoyed_mass[n] += p_.end_mass * (1.0 - p_.mud_density / string.sections().back().density);
+        std::vector<double>& incline = setup_.node_inclinations;
+        if (incline.empty()) incline.assign(n + 1, p_.inclination);
+        else if (incline.size() != n + 1)
+            detail::reject(who, "node_inclinations", "one per node (N + 1)", static_cast<double>(incline.size()));
+        for (double a : incline)
+            if (!(a >= 0.0 && a <= pi)) detail::reject(who, "node_inclinations", "in [0, pi] rad", a);
         weight_.resize(n + 1);
         radius_.assign(n + 1, 0.0);
         for (std::size_t i = 0; i <= n; ++i) {
-            weight_[i] = buoyed_mass[i] * gravity * std::cos(p_.inclination);
+            weight_[i] = buoyed_mass[i] * gravity * std::cos(incline[i]);
             double top = 0.0;
             const double at = dx * static_cast<double>(i);
             for (const PipeSection& s : string.sections()) {  // a node on a boundary touches with the larger OD
@@ -126,7 +135,7 @@ public:
         }
         std::vector<double>& normal = setup_.normal_forces;
         if (normal.empty()) {
-            for (std::size_t i : nodes) normal.push_back(buoyed_mass[i] * gravity * std::sin(p_.inclination));
+            for (std::size_t i : nodes) normal.push_back(buoyed_mass[i] * gravity * std::sin(incline[i]));
         } else if (normal.size() != nodes.size()) {
             detail::reject(who, "normal_forces", "one per contact node", static_cast<double>(normal.size()));
         }
@@ -182,6 +191,15 @@ public:
     /// Normal force of each contact, in contact_nodes order.
     const std::vector<double>& normal_forces() const { return setup_.normal_forces; }
     const std::vector<std::size_t>& contact_nodes() const { return setup_.contact_nodes; }
+    /// The static limit F_s of contact c, N (its law's at its normal force; 0 for a state law: it never sticks).
+    double wall_static_limit(std::size_t c) const {
+        if constexpr (WallLaw::has_stick) return law_.static_limit(setup_.normal_forces[c]);
+        else return (void)c, 0.0;
+    }
+    /// Each node's hole inclination, rad (node_inclinations, or the straight hole's at every node).
+    const std::vector<double>& node_inclinations() const { return setup_.node_inclinations; }
+    /// w_b,i cos I_i, N: each node's buoyed weight along the hole (with m_end's at node N).
+    const std::vector<double>& axial_weights() const { return weight_; }
     const Bit& bit() const { return bit_; }
     bool pi_drive() const { return setup_.top_drive == TopDrive::pi_motor; }
 
@@ -194,6 +212,24 @@ public:
         start_ = std::move(x);
     }
     std::vector<double> initial_state() const { return start_; }
+    /// initial_state() with the axial positions of the string hanging at rest from node 0 without wall friction:
+    /// each element stretched by what it carries, the buoyed weight along the hole below it less the weight on
+    /// bit, so that no contact needs friction to hold its node (an axial run then starts without a transient).
+    std::vector<double> hanging_state() const {
+        std::vector<double> x = start_;
+        if (!axial_) return x;
+        const std::size_t n = setup_.elements;
+        std::vector<double> tension(n, 0.0);
+        double below = on_bottom ? -bit_.weight_on_bit() : 0.0;
+        for (std::size_t e = n; e-- > 0;) {
+            below += weight_[e + 1];
+            tension[e] = below;
+        }
+        x[position(0)] = 0.0;
+        for (std::size_t e = 0; e < n; ++e)
+            x[position(e + 1)] = x[position(e)] + tension[e] / lumped_.axial_stiffness[e];
+        return x;
+    }
 
     // ---- loads and energies ---------------------------------------------------------------------------------
     /// Element e's torque tau_e (spring + damper), N m: what the string below pulls node e forward with.
@@ -287,8 +323,12 @@ public:
             double s = 0.0, a = 0.0;
             loads_between(t, x, mode, i, above, below, s, a);
             if (c != npos) {
-                if (axial_) walls2_[c].guards(x[omega(i)], x[speed(i)], s, a, mode[c], g + k);
-                else walls1_[c].guards(x[omega(i)], s, x + law_state(i), mode[c], inertia_[i], g + k);
+                if (axial_) {
+                    walls2_[c].guards(x[omega(i)], x[speed(i)], planar_loads(x, i, s, a), x + law_state(i), mode[c],
+                                      inertia_[i], mass_[i], g + k);
+                } else {
+                    walls1_[c].guards(x[omega(i)], s, x + law_state(i), mode[c], inertia_[i], g + k);
+                }
                 k += wall_guards_;
             }
             if constexpr (on_bottom)
@@ -326,7 +366,9 @@ public:
                     dv = r.axial_acceleration;
                     power[wall_friction_work] += r.torque * w + r.axial_force * v;
                     walls2_[c].state_derivative(w, v, x + law_state(i), mode[c], dx + law_state(i));
-                    if (g != nullptr) walls2_[c].guards(w, v, s, a, mode[c], g + k);
+                    if (g != nullptr)
+                        walls2_[c].guards(w, v, planar_loads(x, i, s, a), x + law_state(i), mode[c], inertia_[i],
+                                          mass_[i], g + k);
                 } else {
                     const DiscResponse r = walls1_[c].respond(w, s, x + law_state(i), mode[c], inertia_[i]);
                     dw = r.acceleration;
@@ -551,7 +593,7 @@ public:
             loads(t, x, mode, i, s, a);
             if (c != npos) {
                 mode[c] = static_cast<std::int8_t>(
-                    axial_ ? walls2_[c].initial_mode(x[omega(i)], x[speed(i)], s, a)
+                    axial_ ? walls2_[c].initial_mode(x[omega(i)], x[speed(i)], planar_loads(x, i, s, a))
                            : walls1_[c].initial_mode(x[omega(i)], s, x + law_state(i), inertia_[i]));
             }
             if constexpr (on_bottom)
@@ -576,8 +618,10 @@ public:
                     loads(t, x, next, i, s, a);
                     if (axial_) {
                         double lost = 0.0;
-                        next[c] = static_cast<std::int8_t>(walls2_[c].switch_mode(
-                            x[omega(i)], x[speed(i)], s, a, mode[c], inertia_[i], mass_[i], lost));
+                        next[c] = static_cast<std::int8_t>(walls2_[c].switch_mode(x[omega(i)], x[speed(i)],
+                                                                                  planar_loads(x, i, s, a), mode[c],
+                                                                                  fired + k, inertia_[i], mass_[i],
+                                                                                  lost));
                         x[work_offset() + wall_friction_work] += lost;
                     } else {
                         next[c] = static_cast<std::int8_t>(walls1_[c].switch_mode(
@@ -685,6 +729,26 @@ private:
         if (on_bottom && i == setup_.elements) axial -= bit_.weight_on_bit();
     }
 
+    /// Node i's loads (S, P) as they are and with the node itself at rest: its own velocity's share of the element
+    /// dampers removed (d S / d w_i = -beta (k_{i-1} + k_i), the same axially). What a planar contact would have
+    /// to hold once stuck (wall_contact.hpp).
+    PlanarLoads planar_loads(const double* x, std::size_t i, double torque, double axial) const {
+        PlanarLoads l{torque, axial, torque, axial};
+        if (p_.damping_time == 0.0) return l;
+        double kt = 0.0, ka = 0.0;
+        if (i > 0) {
+            kt += lumped_.torsional_stiffness[i - 1];
+            ka += lumped_.axial_stiffness[i - 1];
+        }
+        if (i < setup_.elements) {
+            kt += lumped_.torsional_stiffness[i];
+            ka += lumped_.axial_stiffness[i];
+        }
+        l.hold_torque += p_.damping_time * kt * x[omega(i)];
+        l.hold_axial += p_.damping_time * ka * x[speed(i)];
+        return l;
+    }
+
     static constexpr std::array<const char*, 7> bit_mode_names{"bit_mode_-3", "bit_mode_-2", "bit_slip_negative",
                                                                "bit_stick",   "bit_slip_positive", "bit_mode_2",
                                                                "bit_mode_3"};
@@ -752,7 +816,7 @@ private:
             std::string name;
             if (slot < contacts_) {
                 name = "node_" + std::to_string(setup_.contact_nodes[slot]) + ".";
-                if (axial_) name += Wall2::guard_name(m);
+                if (axial_) name += Wall2::guard_name(k, m);
                 else name += walls1_[slot].guard_name(k, m);
             } else if (on_bottom && slot == bit_slot_) {
                 if constexpr (on_bottom) name = std::string("bit.") + bit_contact_[0].guard_name(k, m);

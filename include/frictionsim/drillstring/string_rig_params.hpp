@@ -82,9 +82,13 @@ struct StringRigSetup {
     bool wall_contacts = true;                 ///< false: no wall contact at all (contact_nodes ignored)
     /// Nodes with a wall contact, increasing, in 1..N (the bit node only when the bit is off bottom). Empty: all.
     std::vector<std::size_t> contact_nodes;
-    /// One normal force per contact node, N. Empty: the straight inclined hole's buoyed weight of each node
-    /// times sin(inclination).
+    /// One normal force per contact node, N. Empty: each node's buoyed weight times the sine of its inclination
+    /// (the straight inclined hole's, or node_inclinations'; a curved well's soft-string forces:
+    /// string_geometry.hpp).
     std::vector<double> normal_forces;
+    /// One inclination per node 0..N, rad in [0, pi]: the hole's direction at each node (axial gravity w_b,i cos I_i;
+    /// e.g. from a survey, string_geometry.hpp). Empty: the params' one straight-hole inclination at every node.
+    std::vector<double> node_inclinations;
     std::size_t excitation_node = 0;           ///< node of the axial excitation (with `axial`)
 };
 
