@@ -4,6 +4,9 @@
 
 namespace frictionsim::python {
 
+/// fs.Survey, fs.SoftString, fs.TorqueDragResult: torque and drag along a well (bindings/wells.cpp).
+void register_wells(py::module_& m);
+
 void require_constructed(py::handle self) {
     // only pybind11 instances have a holder to check (a law argument may be anything)
     if (!PyObject_IsInstance(self.ptr(), py::detail::get_internals().instance_base)) return;
@@ -67,5 +70,6 @@ PYBIND11_MODULE(_core, m) {
     // the rigs simulate() runs: each register_* binds one and hands its class back
     m.attr("RIGS") = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m),
                                     register_drillstring(m));
+    register_wells(m);
     guard_construction(m);
 }

@@ -4,6 +4,9 @@
     frictionsim demo [--out DIR] [--quick]      paper 000's Fig. 7 cases, friction reduction, Table 5 refit;
                                                 paper 001's torsional rig: Fig. 7, law comparison, stick-slip map
     frictionsim fit-table5 [--out DIR]          refit Table 5 from Table 4 and plot Fig. 11
+    frictionsim torque-drag SURVEY.csv [--string OD:ID:LENGTH,...] [--mu 0.2 0.3] [--out DIR]
+                                                soft-string torque and drag along a survey: per-node CSV,
+                                                broomstick and well-path plots (see frictionsim.wells)
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
 target and moved into place (files already in the target that the command does not write are left alone).
@@ -16,7 +19,7 @@ anywhere it likes); else ``out/<file stem>`` in the working directory.
 
 Exit status: 0 on success, 2 for a bad scenario or command line (``error: <file>: <key>: <rule>`` on stderr),
 1 when a simulation stops early (with the time reached) or the outputs cannot be written, 130 on Ctrl-C, 143 on
-SIGTERM.
+SIGTERM. ``torque-drag`` reports a bad survey with its file, line, station and field (exit 2).
 """
 
 from __future__ import annotations
@@ -138,6 +141,45 @@ def _parser() -> argparse.ArgumentParser:
                                           "log10 v_a/v_d per lubricant) from Table 4, beside the printed values.")
     fit.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
     fit.set_defaults(command=_fit_table5)
+
+    td = commands.add_parser("torque-drag", help="soft-string torque and drag along a survey: per-node CSV, "
+                                                 "broomstick and well-path plots",
+                             description="Johancsik soft-string torque and drag of a drill string along a survey "
+                                         "(CSV: md, inc, azi columns, units in the header such as 'md [m]', "
+                                         "'inc [deg]'): tension, torque, side force and buckling per node for "
+                                         "tripping in and out and rotating off bottom (and sliding and rotary "
+                                         "drilling with --wob) at each friction factor, and the broomstick plot of "
+                                         "hook load while the string is run in. Writes into --out only: "
+                                         "torque_drag.csv, broomstick.csv, trajectory.csv, broomstick.png, "
+                                         "well_path.png.")
+    td.add_argument("survey", type=Path, help="survey file (CSV)")
+    td.add_argument("--string", default=DEFAULT_STRING, metavar="OD:ID:LENGTH,...",
+                    help="the string's sections top to bottom, diameters and lengths in metres; one LENGTH may be "
+                         "'*': what the others leave of the bit depth (default: 5\" drill pipe over 150 m of "
+                         f"6 1/2\" collars, {DEFAULT_STRING})")
+    td.add_argument("--mu", type=float, nargs="+", default=[0.1, 0.2, 0.3, 0.4], metavar="MU",
+                    help="friction factors: the open hole's, and the casing's too unless --cased-mu is given "
+                         "(default: 0.1 0.2 0.3 0.4)")
+    td.add_argument("--cased-mu", type=float, metavar="MU", help="friction factor inside the casing")
+    td.add_argument("--casing-shoe", type=float, default=0.0, metavar="MD",
+                    help="measured depth of the casing shoe [m] (default 0: all open hole)")
+    td.add_argument("--mud-density", type=float, default=1200.0, metavar="RHO", help="kg/m^3 (default 1200)")
+    td.add_argument("--wob", type=float, default=0.0, metavar="N",
+                    help="weight on bit [N]: adds sliding and rotary drilling (default 0: off bottom only)")
+    td.add_argument("--bit-torque", type=float, default=0.0, metavar="NM", help="torque on bit [N m], rotary drilling")
+    td.add_argument("--depth", type=float, metavar="MD",
+                    help="bit depth [m] (default: the string's length when no section is '*', else the survey's "
+                         "last depth)")
+    td.add_argument("--depth-unit", choices=("m", "ft"), help="the survey's depth unit when its header gives none "
+                                                              "(default m)")
+    td.add_argument("--angle-unit", choices=("deg", "rad"), help="the survey's angle unit when its header gives "
+                                                                 "none (default deg)")
+    td.add_argument("--element-length", type=float, default=10.0, metavar="M", help="soft-string elements [m] "
+                                                                                     "(default 10)")
+    td.add_argument("--depth-step", type=float, default=30.0, metavar="M",
+                    help="bit-depth step of the broomstick [m] (default 30)")
+    td.add_argument("--out", type=Path, help="output directory (default out/<survey file stem>)")
+    td.set_defaults(command=_torque_drag)
     return parser
 
 
@@ -203,6 +245,122 @@ def _fit_table5(args) -> int:
 
     written = _write(args.out, write)
     print(f"wrote {args.out}: {', '.join(str(p) for p in written)}")
+    return 0
+
+
+#: torque-drag's default string: 5" drill pipe (OD 127 mm, ID 108.6 mm) over 150 m of 6 1/2" x 2 13/16" collars
+DEFAULT_STRING = "0.127:0.1086:*,0.1651:0.0714:150"
+
+
+def _string_sections(spec: str, depth: Optional[float], survey_depth: float):
+    """--string -> (PipeSections top to bottom, bit depth): OD:ID:LENGTH per section, one LENGTH may be '*'."""
+    from . import PipeSection
+
+    parts = [part.strip() for part in spec.split(",") if part.strip()]
+    if not parts:
+        raise CommandError("--string: no section given (OD:ID:LENGTH,...)", 2)
+    parsed = []
+    for index, part in enumerate(parts):
+        fields = part.split(":")
+        if len(fields) != 3:
+            raise CommandError(f"--string: section {index} {part!r}: expected OD:ID:LENGTH (metres)", 2)
+        try:
+            od, inner = float(fields[0]), float(fields[1])
+            length = None if fields[2].strip() == "*" else float(fields[2])
+        except ValueError:
+            raise CommandError(f"--string: section {index} {part!r}: OD, ID and LENGTH must be numbers "
+                               f"(LENGTH may be '*')", 2) from None
+        parsed.append((od, inner, length))
+    rest = [index for index, (_, _, length) in enumerate(parsed) if length is None]
+    if len(rest) > 1:
+        raise CommandError("--string: only one section's LENGTH may be '*'", 2)
+    fixed = sum(length for _, _, length in parsed if length is not None)
+    if depth is None:
+        depth = survey_depth if rest else fixed
+    if rest:
+        if not fixed < depth:
+            raise CommandError(f"--string: the sections of given length ({fixed:g} m) leave nothing of the bit depth "
+                               f"({depth:g} m) for the '*' section", 2)
+        od, inner, _ = parsed[rest[0]]
+        parsed[rest[0]] = (od, inner, depth - fixed)
+    elif not math.isclose(fixed, depth, rel_tol=1e-12):
+        raise CommandError(f"--string: the sections add up to {fixed:g} m, the bit depth is {depth:g} m (give one "
+                           f"LENGTH as '*' to fill it)", 2)
+    sections = []
+    for index, (od, inner, length) in enumerate(parsed):
+        try:
+            sections.append(PipeSection(outer_diameter=od, inner_diameter=inner, length=length))
+        except InvalidParameterError as error:
+            raise CommandError(f"--string: section {index}: {error}", 2) from None
+    return sections, depth
+
+
+def _torque_drag(args) -> int:
+    import pandas as pd
+
+    from . import DrillString
+    from . import plots, wells
+
+    out = args.out if args.out is not None else Path("out") / args.survey.stem
+    _check_target(out)
+    for name in ("mu", "cased_mu", "casing_shoe", "mud_density", "wob", "bit_torque", "depth", "element_length",
+                 "depth_step"):
+        values = getattr(args, name)
+        for value in values if isinstance(values, list) else [values]:
+            if value is not None and not math.isfinite(value):
+                raise CommandError(f"--{name.replace('_', '-')} must be finite (got {value})", 2)
+    try:
+        survey = wells.read_survey(args.survey, depth_unit=args.depth_unit, angle_unit=args.angle_unit)
+    except InvalidParameterError as error:
+        raise CommandError(str(error), 2) from None
+    sections, depth = _string_sections(args.string, args.depth, float(survey.measured_depth[-1]))
+    conditions = dict(mud_density=args.mud_density, casing_shoe_depth=args.casing_shoe,
+                      weight_on_bit=args.wob, bit_torque=args.bit_torque)
+    operations = list(wells.BROOMSTICK_OPERATIONS)
+    if args.wob > 0.0:
+        operations += ["sliding_drilling", "rotary_drilling"]
+    tables, summary = [], []
+    try:
+        string = DrillString(sections)
+        model = wells.soft_string(survey, string, element_length=args.element_length)
+        for mu in args.mu:
+            friction = dict(open_hole_friction=mu, cased_hole_friction=mu if args.cased_mu is None else args.cased_mu)
+            for op in operations:
+                result = model.run(op, **conditions, **friction)
+                table = wells.node_table(result)
+                table.insert(0, "node", range(len(table)))
+                table.insert(0, "friction_factor", mu)
+                table.insert(0, "operation", op)
+                tables.append(table)
+                summary.append({"operation": op, "friction_factor": mu, "hook_load_kN": result.hook_load / 1e3,
+                                "surface_torque_kNm": result.surface_torque / 1e3,
+                                "sinusoidally_buckled_nodes": int(result.sinusoidally_buckled.sum()),
+                                "helically_buckled_nodes": int(result.helically_buckled.sum())})
+        broom_conditions = dict(conditions)
+        if args.cased_mu is not None:
+            broom_conditions["cased_hole_friction"] = args.cased_mu
+        chart = wells.broomstick(survey, string, args.mu, depth_step=args.depth_step,
+                                 element_length=args.element_length, **broom_conditions)
+    except InvalidParameterError as error:
+        raise CommandError(f"{args.survey}: {error}", 2) from None
+    summary_frame = pd.DataFrame(summary)
+    print(f"{args.survey}: {len(survey)} stations to MD {survey.measured_depth[-1]:g} m; bit at {depth:g} m, "
+          f"{model.elements} elements of {model.element_length:.4g} m")
+    print(summary_frame.to_string(index=False, float_format=lambda v: f"{v:.6g}"))
+
+    def write(directory: Path) -> List[Path]:
+        paths = [directory / "torque_drag.csv", directory / "broomstick.csv", directory / "trajectory.csv"]
+        pd.concat(tables, ignore_index=True).to_csv(paths[0], index=False, float_format="%.10g")
+        chart.frame.to_csv(paths[1], index=False, float_format="%.10g")
+        wells.trajectory(survey).to_csv(paths[2], index=False, float_format="%.10g")
+        paths.append(plots.save(plots.broomstick_figure(chart, title=str(args.survey.name)),
+                                directory / "broomstick.png"))
+        paths.append(plots.save(plots.well_path_figure(survey, title=str(args.survey.name)),
+                                directory / "well_path.png"))
+        return paths
+
+    written = _write(out, write)
+    print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
 
 

@@ -18,9 +18,10 @@ from typing import Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-__all__ = ["disc_speed_figure", "drive_force_figure", "friction_force_figure", "friction_torque_hysteresis_figure",
-           "hysteresis_figure", "law_comparison_figure", "phase_portrait_figure", "power_law_figure",
-           "reduction_sweep_figure", "save", "stick_slip_map_figure"]
+__all__ = ["broomstick_axes", "broomstick_figure", "disc_speed_figure", "drive_force_figure", "friction_force_figure",
+           "friction_torque_hysteresis_figure", "hysteresis_figure", "law_comparison_figure", "phase_portrait_figure",
+           "power_law_figure", "reduction_sweep_figure", "save", "stick_slip_map_figure", "well_path_axes",
+           "well_path_figure"]
 
 Window = Optional[Tuple[float, float]]
 
@@ -332,4 +333,93 @@ def law_comparison_figure(frame, *, title: str = "", paper: Optional[dict] = Non
     figure.suptitle(_titled(title, f"friction laws at paper 001's Fig. 7 point (w_ref = {paper['reference_speed']:g}"
                                    f" rad/s, N2 = {paper['normal_force']:g} N) against the paper's values"),
                     fontsize=10)
+    return figure
+
+
+# ------------------------------------------------------------------------------------------ torque and drag (wells)
+#: Broomstick colours per operation: pick-up red, slack-off blue, rotating green (the usual convention).
+_OPERATION_STYLE = {"trip_out": ("C3", "pick-up (trip out)"), "trip_in": ("C0", "slack-off (trip in)"),
+                    "rotating_off_bottom": ("C2", "rotating off bottom"), "reaming": ("C4", "reaming"),
+                    "backreaming": ("C1", "backreaming"), "sliding_drilling": ("C5", "sliding"),
+                    "rotary_drilling": ("C6", "rotary drilling")}
+
+
+def _axes(ax, width: float = 7.0, height: float = 6.0):
+    """``ax``, or the Axes of a new (non-pyplot) figure."""
+    if ax is not None:
+        return ax
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), layout="constrained").subplots()
+
+
+def broomstick_axes(chart, ax=None, *, title: str = ""):
+    """Hook load [kN] against bit depth [m], depth increasing downwards, one line per operation and friction factor
+    of a :class:`frictionsim.wells.Broomstick` (line style by friction factor, labelled at the deepest point);
+    rotating off bottom once (friction does not change it). Returns the Axes."""
+    ax = _axes(ax)
+    styles = ["-", "--", "-.", ":"]
+    for op in chart.operations:
+        color, label = _OPERATION_STYLE.get(op, ("k", op))
+        factors = chart.friction_factors[:1] if op == "rotating_off_bottom" else chart.friction_factors
+        for k, mu in enumerate(factors):
+            depth, load = chart.hook_loads(op, mu)
+            text = label if op == "rotating_off_bottom" else f"{label}, mu = {mu:g}"
+            ax.plot(load / 1e3, depth, color=color, linestyle=styles[k % len(styles)], linewidth=1.3, label=text)
+            if op != "rotating_off_bottom":
+                ax.annotate(f"{mu:g}", (load[-1] / 1e3, depth[-1]), xytext=(0, -9), textcoords="offset points",
+                            ha="center", fontsize=7, color=color)
+    ax.set_xlabel("hook load [kN] (less the block weight)")
+    ax.set_ylabel("bit depth, measured [m]")
+    if not ax.yaxis_inverted():
+        ax.invert_yaxis()
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title(_titled(title, "broomstick: hook load while running in, per friction factor"), fontsize=10)
+    return ax
+
+
+def broomstick_figure(chart, *, title: str = ""):
+    """:func:`broomstick_axes` on a new figure; returns the figure (for :func:`save`)."""
+    return broomstick_axes(chart, title=title).figure
+
+
+def well_path_axes(survey, ax=None, *, view: str = "section", title: str = ""):
+    """A :class:`frictionsim.Survey`'s minimum-curvature path, drawn through interpolated points (arcs between
+    stations, not chords) with the stations marked: ``view="section"`` true vertical depth [m] (down) against
+    horizontal departure [m], ``"plan"`` north against east [m]. Returns the Axes."""
+    if view not in ("section", "plan"):
+        raise ValueError(f"well_path_axes: view must be 'section' or 'plan' (got {view!r})")
+    ax = _axes(ax, 6.0, 6.0)
+    md = np.asarray(survey.measured_depth)
+    fine = np.unique(np.concatenate([np.linspace(md[0], md[-1], 400), md]))
+    path = survey.interpolate(fine)
+    if view == "section":
+        departure = np.hypot(path["north"], path["east"])
+        ax.plot(departure, path["tvd"], color="C0", linewidth=1.5)
+        ax.plot(np.hypot(survey.north, survey.east), survey.tvd, "o", color="C0", markersize=1.5, label="stations")
+        ax.set_xlabel("horizontal departure [m]")
+        ax.set_ylabel("true vertical depth [m]")
+        if not ax.yaxis_inverted():
+            ax.invert_yaxis()
+    else:
+        ax.plot(path["east"], path["north"], color="C0", linewidth=1.5)
+        ax.plot(survey.east, survey.north, "o", color="C0", markersize=1.5, label="stations")
+        ax.set_xlabel("east [m]")
+        ax.set_ylabel("north [m]")
+    ax.set_aspect("equal", adjustable="box")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(_titled(title, f"well path ({'vertical section' if view == 'section' else 'plan view'}, "
+                                f"MD {md[0]:g} to {md[-1]:g} m)"), fontsize=10)
+    return ax
+
+
+def well_path_figure(survey, *, title: str = ""):
+    """Vertical section and plan view of a survey side by side; returns the figure (for :func:`save`)."""
+    figure, (left, right) = _figure(2, width=11.0, height=5.5)
+    well_path_axes(survey, left, view="section")
+    well_path_axes(survey, right, view="plan")
+    if title:
+        figure.suptitle(title, fontsize=10)
     return figure

@@ -368,3 +368,80 @@ def test_fit_power_law_rejects_unusable_tables():
         fit_power_law(pd.DataFrame({"velocity_ratio": [1.0, 2.0]}))
     with pytest.raises(ValueError, match="lubricant"):
         fit_power_law(lubricant=3)
+
+
+# ------------------------------------------------------------------------------------------------ torque-drag
+SURVEYS = ROOT / "examples" / "surveys"
+
+
+def test_torque_drag_writes_node_table_broomstick_and_plots_into_out(tmp_path, capsys):
+    from frictionsim import wells
+
+    out = tmp_path / "td"
+    survey_file = SURVEYS / "j_well.csv"
+    assert main(["torque-drag", str(survey_file), "--mu", "0.2", "0.3", "--wob", "1e5", "--out", str(out)]) == 0
+    expected = {"torque_drag.csv", "broomstick.csv", "trajectory.csv", "broomstick.png", "well_path.png"}
+    assert set(_files(out)) == expected
+    assert _files(tmp_path) == ["td"] + [f"td/{f}" for f in sorted(expected)]  # nothing outside --out
+    for png in out.glob("*.png"):
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+    nodes = pd.read_csv(out / "torque_drag.csv")
+    assert set(nodes["operation"]) == {"trip_in", "trip_out", "rotating_off_bottom", "sliding_drilling",
+                                       "rotary_drilling"}
+    assert set(nodes["friction_factor"]) == {0.2, 0.3}
+    # the default string (5" pipe over 150 m of collars to the survey's 3000 m) through the Python API
+    string = fs.DrillString([fs.PipeSection(length=2850.0),
+                             fs.PipeSection(outer_diameter=0.1651, inner_diameter=0.0714, length=150.0)])
+    survey = wells.read_survey(survey_file)
+    for op in ("trip_out", "sliding_drilling"):
+        direct = wells.torque_drag(survey, string, op, open_hole_friction=0.3, cased_hole_friction=0.3,
+                                   weight_on_bit=1e5)
+        rows = nodes[(nodes["operation"] == op) & (nodes["friction_factor"] == 0.3)]
+        np.testing.assert_allclose(rows["tension"], direct.tension, rtol=1e-9)
+        # side forces lumped at nodes keep the elements' total
+        assert rows["side_force"].sum() == pytest.approx(np.sum(direct.side_force), rel=1e-9)
+    broom = pd.read_csv(out / "broomstick.csv")
+    last = broom[(broom["bit_depth"] == 3000.0) & (broom["operation"] == "trip_out")
+                 & (broom["friction_factor"] == 0.3)]
+    assert float(last["hook_load"].iloc[0]) == pytest.approx(
+        wells.torque_drag(survey, string, "trip_out", open_hole_friction=0.3, cased_hole_friction=0.3).hook_load,
+        rel=1e-9)
+    stdout = capsys.readouterr().out
+    assert "hook_load_kN" in stdout and "bit at 3000 m" in stdout
+
+
+def test_torque_drag_bad_survey_names_file_line_station_and_field(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("md [m],inc [deg],azi [deg]\n0,0,0\n500,10,0\n450,20,0\n")
+    out = tmp_path / "out"
+    assert main(["torque-drag", str(bad), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert f"error: {bad}: line 4: station 2: measured_depth must be >" in err
+    assert not out.exists()
+    bad.write_text("md [m],inc [deg],azi [deg]\n0,0,0\n500,190,0\n")
+    assert main(["torque-drag", str(bad), "--out", str(out)]) == 2
+    assert "line 3: station 1: inclination must be in [0, 180] degrees (got 190)" in capsys.readouterr().err
+    bad.write_text("md [m],inc [deg],azi [deg]\n0,0,0\n")
+    assert main(["torque-drag", str(bad), "--out", str(out)]) == 2
+    assert "stations must be at least 2" in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("string, message", [
+    ("0.127:0.1086", "expected OD:ID:LENGTH"),
+    ("0.127:0.1086:*,0.1651:0.0714:*", "only one section's LENGTH may be '*'"),
+    ("0.127:0.1086:1000", "the sections add up to 1000 m, the bit depth is 1000 m"),
+    ("0.127:0.2:*", "section 0: PipeSection: inner_diameter must be < outer_diameter"),
+    ("0.127:0.1086:3300", "survey must reach the bit"),
+])
+def test_torque_drag_bad_string_is_a_clear_error(string, message, tmp_path, capsys):
+    if "add up" in message:  # consistent: no error when the sections fill the given depth
+        assert main(["torque-drag", str(SURVEYS / "s_well.csv"), "--string", string, "--depth", "1000",
+                     "--out", str(tmp_path / "ok"), "--mu", "0.3"]) == 0
+        assert main(["torque-drag", str(SURVEYS / "s_well.csv"), "--string", string, "--depth", "1200",
+                     "--out", str(tmp_path / "no")]) == 2
+        assert "the sections add up to 1000 m, the bit depth is 1200 m" in capsys.readouterr().err
+        return
+    assert main(["torque-drag", str(SURVEYS / "s_well.csv"), "--string", string, "--out", str(tmp_path / "o")]) == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "o").exists()

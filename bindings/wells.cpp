@@ -1,0 +1,372 @@
+// Torque and drag along a well for Python (issue 14, items 1 and 2): fs.Survey (drillstring/survey.hpp: minimum
+// curvature, its trajectory as NumPy arrays), fs.SoftString (drillstring/soft_string.hpp: Johancsik soft-string
+// torque and drag on a DrillString of fs.PipeSection) and fs.TorqueDragResult (per node and per element arrays).
+// The operating conditions of SoftString.run are SoftStringParams' table: keywords, SoftString.parameters and the
+// error names come from it. No physics here: conversions and names only.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include <frictionsim/drillstring/soft_string.hpp>
+
+#include "table_binding.hpp"
+
+namespace frictionsim::python {
+
+namespace {
+
+constexpr auto condition_fields = SoftStringParams::fields();
+/// More elements than any well needs (a 10 km string at 1 cm): a guard against a typo allocating gigabytes.
+constexpr long max_elements = 1000000;
+
+constexpr Operation operations[] = {Operation::trip_in,           Operation::trip_out,
+                                    Operation::reaming,           Operation::backreaming,
+                                    Operation::rotating_off_bottom, Operation::sliding_drilling,
+                                    Operation::rotary_drilling};
+
+using Values = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
+
+py::array_t<double> to_array(const std::vector<double>& v) {
+    return py::array_t<double>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+py::array_t<bool> to_flags(const std::vector<std::uint8_t>& v) {
+    py::array_t<bool> out(static_cast<py::ssize_t>(v.size()));
+    auto o = out.mutable_unchecked<1>();
+    for (std::size_t i = 0; i < v.size(); ++i) o(static_cast<py::ssize_t>(i)) = v[i] != 0;
+    return out;
+}
+
+/// A one-dimensional array of numbers, or an InvalidParameter naming `field`.
+std::vector<double> column(const Values& values, const char* owner, const char* field) {
+    if (values.ndim() != 1)
+        throw InvalidParameter(field, std::string(owner) + ": " + field + " must be one-dimensional (got " +
+                                          std::to_string(values.ndim()) + " dimensions)");
+    return std::vector<double>(values.data(), values.data() + values.shape(0));
+}
+
+std::vector<SurveyStation> stations_from(const Values& md, const Values& inc, const Values& azi) {
+    const std::vector<double> d = column(md, "Survey", "measured_depth"),
+                              i = column(inc, "Survey", "inclination"), a = column(azi, "Survey", "azimuth");
+    for (const auto& [values, field] : {std::pair{&i, "inclination"}, std::pair{&a, "azimuth"}})
+        if (values->size() != d.size())
+            throw InvalidParameter(field, std::string("Survey: ") + field + " must hold one value per station (" +
+                                              std::to_string(d.size()) + " measured depths, got " +
+                                              std::to_string(values->size()) + ")");
+    std::vector<SurveyStation> out(d.size());
+    for (std::size_t k = 0; k < d.size(); ++k) out[k] = {d[k], i[k], a[k]};
+    return out;
+}
+
+std::vector<double> station_values(const Survey& s, double SurveyStation::*member) {
+    std::vector<double> out;
+    out.reserve(s.size());
+    for (const SurveyStation& st : s.stations()) out.push_back(st.*member);
+    return out;
+}
+
+/// Per station, the first 0 (no course ends there): dogleg [rad] or its severity [rad/m] of the course ending at i.
+std::vector<double> per_course(const Survey& s, bool severity) {
+    std::vector<double> out(s.size(), 0.0);
+    for (std::size_t i = 1; i < s.size(); ++i) out[i] = severity ? s.dogleg_severity(i) : s.dogleg(i);
+    return out;
+}
+
+std::vector<double> positions(const Survey& s, double (Survey::*coordinate)(std::size_t) const) {
+    std::vector<double> out(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) out[i] = (s.*coordinate)(i);
+    return out;
+}
+
+std::string survey_repr(const Survey& s) {
+    return "Survey(" + std::to_string(s.size()) + " stations, measured depth " + format_double(s.first_depth()) +
+           " to " + format_double(s.last_depth()) + " m)";
+}
+
+Operation operation_from(py::handle value) {
+    if (py::isinstance<py::str>(value)) {
+        const std::string name = value.cast<std::string>();
+        for (Operation op : operations)
+            if (name == operation_name(op)) return op;
+    }
+    std::string names;
+    for (Operation op : operations) names += std::string(names.empty() ? "" : ", ") + "'" + operation_name(op) + "'";
+    if (!py::isinstance<py::str>(value))
+        throw py::type_error("SoftString.run: operation must be a str, one of " + names + " (got " +
+                             type_name(value) + ")");
+    throw InvalidParameter("operation", "SoftString.run: operation must be one of " + names + " (got " +
+                                            std::string(py::repr(value)) + ")");
+}
+
+SoftStringParams conditions_from(const py::kwargs& kwargs) {
+    SoftStringParams p{};
+    const std::size_t used = read_field_keywords(p, kwargs, condition_fields, "SoftString.run");
+    if (used != kwargs.size())
+        for (auto item : kwargs) {
+            const std::string key = py::str(item.first);
+            bool known = false;
+            for (const Field<SoftStringParams>& f : condition_fields) known = known || key == f.public_name();
+            if (!known) throw py::type_error("SoftString.run() got an unexpected keyword argument '" + key + "'");
+        }
+    validate_fields("SoftString.run", p, condition_fields);
+    return p;
+}
+
+/// The Python SoftString: what it was built from (properties, pickling) and the model.
+struct BoundSoftString {
+    Survey survey;
+    DrillString string;
+    SoftString model;
+
+    BoundSoftString(Survey s, DrillString d, std::size_t elements)
+        : survey(std::move(s)), string(std::move(d)), model(survey, string, elements) {}
+};
+
+std::size_t elements_from(py::handle value) {
+    if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__index__"))
+        throw py::type_error("SoftString: elements must be a whole number (got " + type_name(value) + ")");
+    const long n = value.attr("__index__")().cast<long>();
+    if (n < 1 || n > max_elements)
+        throw InvalidParameter("elements", "SoftString: elements must be in [1, " + std::to_string(max_elements) +
+                                               "] (got " + std::to_string(n) + ")");
+    return static_cast<std::size_t>(n);
+}
+
+const char* const soft_string_doc = R"doc(
+Soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380) of a DrillString hung from measured
+depth 0 along a Survey (which must reach the string's length), cut into `elements` elements of equal length: node 0
+at the surface, node N at the bit, element e between nodes e and e + 1. From the bit up, per element:
+
+    F_n = sqrt(F^2 (beta^2 - dI^2) + (F dI + W sin I_avg)^2)        side force (dI = I_top - I_bottom)
+    F_top = F + W dTVD/dL +/- mu_axial F_n,   M_top = M + mu_circ F_n r
+
+with W the buoyed weight g (m - rho_mud V), beta the element's dogleg on the minimum-curvature well and the
+friction factor split between axial and circumferential sliding by the sliding-velocity vector (trip speed
+against rotary speed: paper 000's friction vector). run(operation, **conditions) gives a TorqueDragResult; the
+conditions are the keywords of SoftString.parameters (mud density, cased and open-hole friction factors, casing shoe,
+hole sizes, speeds, weight and torque on bit), SI units. Operations: SoftString.operations.
+)doc";
+
+}  // namespace
+
+void register_wells(py::module_& m) {
+    py::options options;
+
+    // ---- Survey
+    py::class_<Survey> survey(m, "Survey", R"doc(
+A well survey: stations of measured depth [m], inclination from vertical [rad, 0..pi] and azimuth from north
+towards east [rad], measured depth strictly increasing; its minimum-curvature trajectory (Sawaryn & Thorogood 2005,
+SPE 84246): between two stations the circular arc tangent to both station directions.
+
+Survey(measured_depth, inclination, azimuth) takes radians; Survey.from_degrees(...) takes degrees (as survey
+listings give them). Positions are relative to the first station: north, east and true vertical depth [m] per
+station; dogleg [rad] and dogleg_severity [rad/m] per station of the course ending there (0 at station 0).
+A bad survey (fewer than two stations, NaN, depth not increasing, inclination outside 0..180 degrees, a course that
+reverses the direction) raises InvalidParameterError (a ValueError) naming the station and the field.
+)doc");
+    options.disable_function_signatures();
+    survey
+        .def(py::init([](const Values& md, const Values& inc, const Values& azi) {
+                 return Survey(stations_from(md, inc, azi));
+             }),
+             "__init__(self, measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, "
+             "azimuth: numpy.typing.ArrayLike) -> None\n\nStations in SI: measured depth [m], inclination and "
+             "azimuth [rad].\n",
+             py::arg("measured_depth"), py::arg("inclination"), py::arg("azimuth"))
+        .def_static("from_degrees",
+                    [](const Values& md, const Values& inc, const Values& azi) {
+                        return Survey::from_degrees(stations_from(md, inc, azi));
+                    },
+                    "from_degrees(measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, "
+                    "azimuth: numpy.typing.ArrayLike) -> Survey\n\nStations with measured depth [m], inclination "
+                    "and azimuth in degrees (errors quote degrees).\n",
+                    py::arg("measured_depth"), py::arg("inclination"), py::arg("azimuth"));
+    options.enable_function_signatures();
+    survey
+        .def_property_readonly("measured_depth",
+                               [](const Survey& s) {
+                                   return to_array(station_values(s, &SurveyStation::measured_depth));
+                               },
+                               "Measured depth of each station [m].")
+        .def_property_readonly("inclination",
+                               [](const Survey& s) { return to_array(station_values(s, &SurveyStation::inclination)); },
+                               "Inclination of each station [rad].")
+        .def_property_readonly("azimuth",
+                               [](const Survey& s) { return to_array(station_values(s, &SurveyStation::azimuth)); },
+                               "Azimuth of each station as given [rad].")
+        .def_property_readonly("north", [](const Survey& s) { return to_array(positions(s, &Survey::north)); },
+                               "North of each station relative to station 0 [m].")
+        .def_property_readonly("east", [](const Survey& s) { return to_array(positions(s, &Survey::east)); },
+                               "East of each station relative to station 0 [m].")
+        .def_property_readonly("tvd", [](const Survey& s) { return to_array(positions(s, &Survey::tvd)); },
+                               "True vertical depth of each station relative to station 0 [m].")
+        .def_property_readonly("dogleg", [](const Survey& s) { return to_array(per_course(s, false)); },
+                               "Dogleg angle of the course ending at each station [rad] (0 at station 0).")
+        .def_property_readonly("dogleg_severity", [](const Survey& s) { return to_array(per_course(s, true)); },
+                               "Dogleg severity of the course ending at each station [rad/m] (0 at station 0); "
+                               "times 180/pi * 30 for degrees per 30 m.")
+        .def("interpolate",
+             [](const Survey& s, const Values& md) {
+                 const std::vector<double> depths = column(md, "Survey.interpolate", "measured_depth");
+                 std::vector<double> inc, azi, north, east, tvd, curvature;
+                 for (double d : depths) {
+                     const WellPoint p = s.at(d);
+                     inc.push_back(p.inclination);
+                     azi.push_back(p.azimuth);
+                     north.push_back(p.north);
+                     east.push_back(p.east);
+                     tvd.push_back(p.tvd);
+                     curvature.push_back(p.curvature);
+                 }
+                 py::dict out;
+                 out["measured_depth"] = to_array(depths);
+                 out["inclination"] = to_array(inc);
+                 out["azimuth"] = to_array(azi);
+                 out["north"] = to_array(north);
+                 out["east"] = to_array(east);
+                 out["tvd"] = to_array(tvd);
+                 out["curvature"] = to_array(curvature);
+                 return out;
+             },
+             "The well at each measured depth [m] (within the survey) on the minimum-curvature arcs: a dict of "
+             "arrays measured_depth, inclination and azimuth [rad] (azimuth in [0, 2 pi)), north, east, tvd [m] "
+             "and curvature [rad/m] (the dogleg severity of the course holding it).",
+             py::arg("measured_depth"))
+        .def("__len__", &Survey::size)
+        .def("__repr__", &survey_repr)
+        .def("__reduce__", [](py::handle self) {
+            const auto& s = self.cast<const Survey&>();
+            py::tuple stations = py::make_tuple(to_array(station_values(s, &SurveyStation::measured_depth)),
+                                                to_array(station_values(s, &SurveyStation::inclination)),
+                                                to_array(station_values(s, &SurveyStation::azimuth)));
+            return reduce_by_construction(self, std::move(stations));
+        });
+
+    // ---- TorqueDragResult
+    py::class_<TorqueDragResult>(m, "TorqueDragResult", R"doc(
+Torque and drag of one operation along the string: per node (N + 1, node 0 at the surface) measured_depth [m],
+tension (effective, compression < 0) [N], torque [N m], the Dawson-Paslay sinusoidal and Chen-Lin-Cheatham helical
+buckling loads [N] and the flags where the compression exceeds them; per element (N) side_force [N] and
+side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_torque [N m] are node 0's.
+)doc")
+        .def_property_readonly("operation", [](const TorqueDragResult& r) { return operation_name(r.operation); })
+        .def_property_readonly("measured_depth", [](const TorqueDragResult& r) { return to_array(r.measured_depth); },
+                               "Measured depth of each node [m].")
+        .def_property_readonly("tension", [](const TorqueDragResult& r) { return to_array(r.tension); },
+                               "Effective tension at each node [N] (compression < 0).")
+        .def_property_readonly("torque", [](const TorqueDragResult& r) { return to_array(r.torque); },
+                               "Torque at each node [N m].")
+        .def_property_readonly("side_force", [](const TorqueDragResult& r) { return to_array(r.side_force); },
+                               "Wall contact force of each element [N].")
+        .def_property_readonly("side_force_per_length",
+                               [](const TorqueDragResult& r) { return to_array(r.side_force_per_length); },
+                               "Wall contact force per length of each element [N/m].")
+        .def_property_readonly("sinusoidal_buckling_load",
+                               [](const TorqueDragResult& r) { return to_array(r.sinusoidal_buckling_load); },
+                               "Dawson-Paslay critical compression at each node [N].")
+        .def_property_readonly("helical_buckling_load",
+                               [](const TorqueDragResult& r) { return to_array(r.helical_buckling_load); },
+                               "Chen-Lin-Cheatham critical compression at each node [N].")
+        .def_property_readonly("sinusoidally_buckled",
+                               [](const TorqueDragResult& r) { return to_flags(r.sinusoidally_buckled); },
+                               "Compression above the sinusoidal buckling load, per node.")
+        .def_property_readonly("helically_buckled",
+                               [](const TorqueDragResult& r) { return to_flags(r.helically_buckled); },
+                               "Compression above the helical buckling load, per node.")
+        .def_property_readonly("hook_load", &TorqueDragResult::hook_load, "Tension at the surface [N].")
+        .def_property_readonly("surface_torque", &TorqueDragResult::surface_torque, "Torque at the surface [N m].")
+        .def("__repr__", [](const TorqueDragResult& r) {
+            return std::string("TorqueDragResult(") + operation_name(r.operation) + ", " +
+                   std::to_string(r.measured_depth.size()) + " nodes, hook_load=" + format_double(r.hook_load()) +
+                   " N, surface_torque=" + format_double(r.surface_torque()) + " N m)";
+        });
+
+    // ---- SoftString
+    py::class_<BoundSoftString> cls(m, "SoftString", kept(soft_string_doc + std::string("\nConditions\n----------\n") +
+                                                          keywords_doc(condition_fields)));
+    cls.attr("parameters") = parameter_infos(condition_fields);
+    py::tuple names(std::size(operations));
+    for (std::size_t i = 0; i < std::size(operations); ++i) names[i] = operation_name(operations[i]);
+    cls.attr("operations") = names;
+    options.disable_function_signatures();
+    cls.def(py::init([](py::handle s, py::handle d, py::handle elements) {
+                for (const auto& [value, name, ok] : {std::tuple{s, "survey", py::isinstance<Survey>(s)},
+                                                      std::tuple{d, "string", py::isinstance<DrillString>(d)}}) {
+                    require_constructed(value);
+                    if (!ok)
+                        throw py::type_error(std::string("SoftString: ") + name + " must be a " +
+                                             (std::string(name) == "survey" ? "Survey" : "DrillString") + " (got " +
+                                             type_name(value) + ")");
+                }
+                return BoundSoftString(s.cast<Survey>(), d.cast<DrillString>(), elements_from(elements));
+            }),
+            "__init__(self, survey: Survey, string: DrillString, elements: int) -> None\n\nThe string hung from "
+            "measured depth 0 along the survey, in `elements` elements of equal length.\n",
+            py::arg("survey"), py::arg("string"), py::arg("elements"));
+    std::string run_signature = "run(self, operation: str, *";
+    const SoftStringParams defaults{};
+    for (const Field<SoftStringParams>& f : condition_fields)
+        run_signature += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
+    cls.def("run",
+            [](const BoundSoftString& s, py::handle operation, const py::kwargs& kwargs) {
+                const Operation op = operation_from(operation);
+                const SoftStringParams p = conditions_from(kwargs);
+                TorqueDragResult out;
+                {
+                    py::gil_scoped_release release;
+                    s.model.run(op, p, out);
+                }
+                return out;
+            },
+            kept(run_signature + ") -> TorqueDragResult\n\nTorque and drag of one operation (one of "
+                                 "SoftString.operations) under the conditions given by keyword (the others keep "
+                                 "their defaults; see SoftString.parameters).\n"),
+            py::arg("operation"));
+    options.enable_function_signatures();
+    cls.def_property_readonly("survey", [](const BoundSoftString& s) { return s.survey; }, "The Survey (a copy).")
+        .def_property_readonly("string", [](const BoundSoftString& s) { return s.string; },
+                               "The DrillString (a copy).")
+        .def_property_readonly("elements", [](const BoundSoftString& s) { return s.model.elements(); }, "N.")
+        .def_property_readonly("element_length", [](const BoundSoftString& s) { return s.model.element_length(); },
+                               "Length of each element [m].")
+        .def_property_readonly("node_depths", [](const BoundSoftString& s) { return to_array(s.model.node_depths()); },
+                               "Measured depth of each node [m] (N + 1).")
+        .def_property_readonly("node_inclinations",
+                               [](const BoundSoftString& s) { return to_array(s.model.node_inclinations()); },
+                               "Inclination at each node [rad].")
+        .def("element_weights",
+             [](const BoundSoftString& s, double mud_density) {
+                 detail::require_non_negative("SoftString", "mud_density", mud_density);
+                 std::vector<double> w(s.model.elements());
+                 for (std::size_t e = 0; e < w.size(); ++e) w[e] = s.model.element_weight(e, mud_density);
+                 return to_array(w);
+             },
+             "Buoyed weight of each element [N] in mud of density mud_density [kg/m^3].", py::arg("mud_density"))
+        .def("node_side_forces",
+             [](const BoundSoftString& s, const Values& tension, double mud_density) {
+                 const std::vector<double> t = column(tension, "SoftString.node_side_forces", "tension");
+                 return to_array(s.model.node_side_forces(t, mud_density));
+             },
+             "The wall contact force at each node [N] for an effective tension per node (N + 1 values, surface "
+             "first): each element's side force under the mean of its end tensions, half to each of its nodes.",
+             py::arg("tension"), py::arg("mud_density"))
+        .def("__repr__", [](const BoundSoftString& s) {
+            return "SoftString(" + survey_repr(s.survey) + ", " + std::string(py::repr(py::cast(s.string))) +
+                   ", elements=" + std::to_string(s.model.elements()) + ")";
+        })
+        .def("__reduce__", [](py::handle self) {
+            const auto& s = self.cast<const BoundSoftString&>();
+            return reduce_by_construction(self, py::make_tuple(py::cast(s.survey), py::cast(s.string),
+                                                               s.model.elements()));
+        });
+}
+
+}  // namespace frictionsim::python

@@ -1,0 +1,350 @@
+"""Torque and drag along a real well: surveys, the soft-string model, broomstick plots (issue 14).
+
+The model is C++: :class:`~frictionsim.Survey` (``include/frictionsim/drillstring/survey.hpp``: minimum curvature,
+dogleg severity, TVD) and :class:`~frictionsim.SoftString` (``soft_string.hpp``: Johancsik, Friesen & Dawson 1984,
+SPE 11380, with the friction split between axial and circumferential sliding by the sliding-velocity vector),
+on a :class:`~frictionsim.DrillString` of :class:`~frictionsim.PipeSection`. This module reads survey files, runs
+the standard operations and the hook load while the string is run in to each depth (the broomstick plot), and
+draws them. SI units: metres, newtons, radians inside; survey files give their units in the header.
+
+    >>> import frictionsim as fs
+    >>> from frictionsim import wells
+    >>> survey = wells.read_survey("examples/surveys/j_well.csv")       # md [m], inc [deg], azi [deg]
+    >>> string = fs.DrillString([fs.PipeSection(length=2850.0),
+    ...                          fs.PipeSection(outer_diameter=0.1651, inner_diameter=0.0714, length=150.0)])
+    >>> wells.torque_drag(survey, string, "trip_out", open_hole_friction=0.3).hook_load    # N
+    >>> chart = wells.broomstick(survey, string, friction_factors=(0.1, 0.2, 0.3, 0.4))
+    >>> wells.plot_broomstick(chart)                                   # a matplotlib Axes
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from ._core import DrillString, PipeSection, SoftString, Survey, TorqueDragResult
+from .errors import InvalidParameterError
+
+__all__ = [
+    "BROOMSTICK_OPERATIONS",
+    "Broomstick",
+    "DrillString",
+    "OPERATIONS",
+    "PipeSection",
+    "SoftString",
+    "Survey",
+    "TorqueDragResult",
+    "broomstick",
+    "node_table",
+    "plot_broomstick",
+    "plot_well_path",
+    "read_survey",
+    "soft_string",
+    "string_to_depth",
+    "survey_from",
+    "torque_drag",
+    "trajectory",
+]
+
+#: The operations of :meth:`SoftString.run` (trip_in, trip_out, reaming, backreaming, rotating_off_bottom,
+#: sliding_drilling, rotary_drilling).
+OPERATIONS: Tuple[str, ...] = tuple(SoftString.operations)
+#: What a broomstick plot shows: slack-off (running in), pick-up (pulling out) and rotating off bottom.
+BROOMSTICK_OPERATIONS: Tuple[str, ...] = ("trip_in", "trip_out", "rotating_off_bottom")
+
+#: Depth and angle units a survey file or call may use, as factors to metres and radians.
+DEPTH_UNITS: Dict[str, float] = {"m": 1.0, "ft": 0.3048}
+ANGLE_UNITS: Dict[str, float] = {"deg": math.pi / 180.0, "rad": 1.0}
+_UNIT_ALIASES = {"m": "m", "metre": "m", "metres": "m", "meter": "m", "meters": "m", "ft": "ft", "feet": "ft",
+                 "foot": "ft", "deg": "deg", "degree": "deg", "degrees": "deg", "°": "deg", "rad": "rad",
+                 "radian": "rad", "radians": "rad"}
+#: Column names a survey file may use for each field (case-insensitive, the unit in [..] or (..) after it).
+_COLUMNS = {"measured_depth": ("md", "measured_depth", "measured depth", "depth", "dmea"),
+            "inclination": ("inc", "incl", "inclination"),
+            "azimuth": ("azi", "az", "azim", "azimuth")}
+
+#: Default element length of the soft-string model [m]: survey stations are ~30 m apart; 10 m elements keep the
+#: explicit step's first-order error well below the friction factor's uncertainty.
+ELEMENT_LENGTH = 10.0
+
+PathLike = Union[str, Path]
+
+
+# --------------------------------------------------------------------------------------------------------- surveys
+def survey_from(measured_depth, inclination, azimuth, *, depth_unit: str = "m", angle_unit: str = "deg") -> Survey:
+    """A :class:`Survey` from station arrays in the given units (depth ``"m"`` or ``"ft"``, angles ``"deg"`` or
+    ``"rad"``). Bad stations raise :class:`~frictionsim.InvalidParameterError` naming the station and field."""
+    depth = _factor(depth_unit, DEPTH_UNITS, "depth_unit")
+    angle = _factor(angle_unit, ANGLE_UNITS, "angle_unit")
+    md = np.asarray(measured_depth, dtype=float) * depth
+    return Survey(md, np.asarray(inclination, dtype=float) * angle, np.asarray(azimuth, dtype=float) * angle)
+
+
+def read_survey(path: PathLike, *, depth_unit: Optional[str] = None, angle_unit: Optional[str] = None) -> Survey:
+    """Read a survey CSV file: a header row naming the measured depth, inclination and azimuth columns (``md``,
+    ``inc``, ``azi`` or the long names; other columns are ignored), then one station per row. Lines starting with
+    ``#`` are comments. Units come from the header (``md [m]``, ``md (ft)``, ``inc [deg]``, ``azi [rad]``) or from
+    ``depth_unit`` / ``angle_unit`` (default metres and degrees); a header and an argument that disagree are an
+    error.
+
+    Errors are :class:`~frictionsim.InvalidParameterError` (a ValueError) naming the file, the station, its line
+    and the field: a cell that is not a number, and every rule of :class:`Survey` (at least two stations, finite
+    values, measured depth strictly increasing, inclination in 0..180 degrees).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except OSError as error:
+        raise InvalidParameterError(f"{path}: cannot read the survey ({error.strerror or error})", "path") from None
+    rows = [(number, row) for number, row in enumerate(csv.reader(text.splitlines()), start=1)
+            if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")]
+    if not rows:
+        raise InvalidParameterError(f"{path}: no header row (expected columns md, inc, azi)", "header")
+    header_line, header = rows[0]
+    where: Dict[str, int] = {}
+    units: Dict[str, Optional[str]] = {}
+    for index, cell in enumerate(header):
+        name, unit = _split_unit(cell, path, header_line)
+        for field, aliases in _COLUMNS.items():
+            if name in aliases:
+                if field in where:
+                    raise InvalidParameterError(f"{path}: line {header_line}: two {field} columns", field)
+                where[field], units[field] = index, unit
+    for field in _COLUMNS:
+        if field not in where:
+            raise InvalidParameterError(
+                f"{path}: line {header_line}: no {field} column (header: {', '.join(header)}; expected one of "
+                f"{', '.join(_COLUMNS[field])})", field)
+    depth = _unit_of("measured_depth", units["measured_depth"], depth_unit, "m", DEPTH_UNITS, "depth_unit", path)
+    angles = {field: _unit_of(field, units[field], angle_unit, "deg", ANGLE_UNITS, "angle_unit", path)
+              for field in ("inclination", "azimuth")}
+    values: Dict[str, List[float]] = {field: [] for field in _COLUMNS}
+    lines: List[int] = []
+    for station, (number, row) in enumerate(rows[1:]):
+        for field, index in where.items():
+            cell = row[index].strip() if index < len(row) else ""
+            try:
+                value = float(cell)
+            except ValueError:
+                raise InvalidParameterError(f"{path}: line {number}: station {station}: {field}: "
+                                            f"{cell!r} is not a number", field) from None
+            values[field].append(value)
+        lines.append(number)
+    md = np.asarray(values["measured_depth"]) * DEPTH_UNITS[depth]
+    inc, azi = np.asarray(values["inclination"]), np.asarray(values["azimuth"])
+    if angles["azimuth"] != angles["inclination"]:  # azimuth in the inclination's unit
+        azi = azi * ANGLE_UNITS[angles["azimuth"]] / ANGLE_UNITS[angles["inclination"]]
+    try:
+        if angles["inclination"] == "deg":  # the errors then quote the file's degrees
+            return Survey.from_degrees(md, inc, azi)
+        return Survey(md, inc, azi)
+    except InvalidParameterError as error:
+        message = str(error).replace("Survey: ", "", 1)
+        found = re.match(r"station (\d+)", message)
+        line = f"line {lines[int(found.group(1))]}: " if found and int(found.group(1)) < len(lines) else ""
+        feet = " (depths quoted in m, the file's in ft)" if depth == "ft" else ""
+        raise InvalidParameterError(f"{path}: {line}{message}{feet}", error.parameter) from None
+
+
+def _split_unit(cell: str, path: Path, line: int) -> Tuple[str, Optional[str]]:
+    found = re.fullmatch(r"\s*([^\[\(]*?)\s*(?:[\[\(]\s*([^\]\)]*?)\s*[\]\)])?\s*", cell)
+    name, unit = (found.group(1), found.group(2)) if found else (cell.strip(), None)
+    name = name.lower().replace("_", " ").strip()
+    name = {"measured depth": "measured_depth"}.get(name, name)
+    if unit is None:
+        return name, None
+    alias = _UNIT_ALIASES.get(unit.lower())
+    if alias is None:
+        raise InvalidParameterError(f"{path}: line {line}: column {cell.strip()!r}: unknown unit {unit!r} "
+                                    f"(known: {', '.join(sorted(set(_UNIT_ALIASES.values())))})", "unit")
+    return name, alias
+
+
+def _unit_of(field: str, in_header: Optional[str], given: Optional[str], default: str, known: Dict[str, float],
+             keyword: str, path: Path) -> str:
+    if given is not None:
+        _factor(given, known, keyword)
+    if in_header is not None and in_header not in known:
+        raise InvalidParameterError(f"{path}: {field}: unit {in_header!r} is not a unit of this field "
+                                    f"({', '.join(known)})", field)
+    if in_header is not None and given is not None and in_header != given:
+        raise InvalidParameterError(f"{path}: {field}: the header says {in_header!r}, {keyword} says {given!r}",
+                                    keyword)
+    return in_header or given or default
+
+
+def _factor(unit: str, known: Dict[str, float], keyword: str) -> float:
+    if unit not in known:
+        raise InvalidParameterError(f"{keyword} must be one of {', '.join(map(repr, known))} (got {unit!r})",
+                                    keyword)
+    return known[unit]
+
+
+def trajectory(survey: Survey):
+    """The survey's stations and minimum-curvature trajectory as a pandas DataFrame: measured_depth [m],
+    inclination and azimuth [deg], north, east, tvd [m], dogleg_severity [deg/30 m] (of the course ending at each
+    station; 0 at the first)."""
+    import pandas as pd
+
+    return pd.DataFrame({"measured_depth": survey.measured_depth,
+                         "inclination": np.degrees(survey.inclination),
+                         "azimuth": np.degrees(survey.azimuth),
+                         "north": survey.north, "east": survey.east, "tvd": survey.tvd,
+                         "dogleg_severity": np.degrees(survey.dogleg_severity) * 30.0})
+
+
+# ------------------------------------------------------------------------------------------------- torque and drag
+def string_to_depth(string: DrillString, depth: float) -> DrillString:
+    """``string`` with its bit at measured depth ``depth`` while running in: the bottom sections kept, drill pipe
+    removed from the top (the string as it is when the bit passes ``depth``)."""
+    if not (math.isfinite(depth) and 0.0 < depth <= string.length):
+        raise InvalidParameterError(f"string_to_depth: depth must be in (0, {string.length:g}] m, the string's "
+                                    f"length (got {depth!r})", "depth")
+    kept: List[PipeSection] = []
+    remaining = depth
+    for section in reversed(string.sections):
+        if remaining <= 0.0:
+            break
+        length = min(section.length, remaining)
+        kept.append(_with_length(section, length))
+        remaining -= length
+    return DrillString(kept[::-1])
+
+
+def _with_length(section: PipeSection, length: float) -> PipeSection:
+    values = {p.name: getattr(section, p.name) for p in PipeSection.parameters}
+    values["length"] = length
+    return PipeSection(**values)
+
+
+def soft_string(survey: Survey, string: DrillString, *, elements: Optional[int] = None,
+                element_length: float = ELEMENT_LENGTH) -> SoftString:
+    """The soft-string model of ``string`` hung along ``survey``: ``elements`` elements, or as many as make them
+    at most ``element_length`` [m] long."""
+    if elements is None:
+        if not (math.isfinite(element_length) and element_length > 0.0):
+            raise InvalidParameterError(f"element_length must be positive and finite (got {element_length!r})",
+                                        "element_length")
+        elements = max(1, math.ceil(string.length / element_length - 1e-9))
+    return SoftString(survey, string, elements)
+
+
+def torque_drag(survey: Survey, string: DrillString, operation: str = "trip_out", *,
+                elements: Optional[int] = None, element_length: float = ELEMENT_LENGTH,
+                **conditions: float) -> TorqueDragResult:
+    """Torque and drag of one operation (one of :data:`OPERATIONS`) with the string's bit at its full length;
+    ``conditions`` are the keywords of ``SoftString.parameters`` (mud_density [kg/m^3], cased_hole_friction,
+    open_hole_friction, casing_shoe_depth [m], weight_on_bit [N], bit_torque [N m], speeds, hole sizes)."""
+    return soft_string(survey, string, elements=elements, element_length=element_length).run(operation,
+                                                                                               **conditions)
+
+
+def node_table(result: TorqueDragResult):
+    """One row per node of a result (a pandas DataFrame): measured_depth [m], tension [N], torque [N m],
+    side_force [N] lumped at the node (half of each adjoining element's: the total is the elements' total),
+    side_force_per_length [N/m] (the mean of the adjoining elements'), the buckling loads [N] and flags."""
+    import pandas as pd
+
+    element = np.asarray(result.side_force)
+    per_length = np.asarray(result.side_force_per_length)
+    lumped = np.zeros(len(element) + 1)
+    lumped[:-1] += 0.5 * element
+    lumped[1:] += 0.5 * element
+    mean_per_length = np.concatenate(([per_length[0]], 0.5 * (per_length[:-1] + per_length[1:]), [per_length[-1]]))
+    return pd.DataFrame({"measured_depth": result.measured_depth, "tension": result.tension,
+                         "torque": result.torque, "side_force": lumped, "side_force_per_length": mean_per_length,
+                         "sinusoidal_buckling_load": result.sinusoidal_buckling_load,
+                         "helical_buckling_load": result.helical_buckling_load,
+                         "sinusoidally_buckled": result.sinusoidally_buckled,
+                         "helically_buckled": result.helically_buckled})
+
+
+# ------------------------------------------------------------------------------------------------------ broomstick
+@dataclass(frozen=True)
+class Broomstick:
+    """Hook load (and surface torque) against bit depth while the string is run in, per friction factor and
+    operation. ``frame``: one row per (bit_depth [m], friction_factor, operation) with hook_load [N] and
+    surface_torque [N m]. ``conditions``: the other keywords of the runs."""
+
+    frame: Any
+    friction_factors: Tuple[float, ...]
+    operations: Tuple[str, ...]
+    conditions: Dict[str, float]
+
+    def hook_loads(self, operation: str, friction_factor: float) -> Tuple[np.ndarray, np.ndarray]:
+        """(bit depths [m], hook loads [N]) of one operation and friction factor."""
+        rows = self.frame[(self.frame["operation"] == operation)
+                          & (self.frame["friction_factor"] == friction_factor)]
+        if rows.empty:
+            raise KeyError(f"no {operation!r} at friction factor {friction_factor!r} in this broomstick "
+                           f"(operations {self.operations}, friction factors {self.friction_factors})")
+        return rows["bit_depth"].to_numpy(), rows["hook_load"].to_numpy()
+
+
+def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[float] = (0.1, 0.2, 0.3, 0.4), *,
+               depths: Optional[Sequence[float]] = None, depth_step: float = 30.0,
+               element_length: float = ELEMENT_LENGTH, operations: Sequence[str] = BROOMSTICK_OPERATIONS,
+               **conditions: float) -> Broomstick:
+    """Hook load against bit depth for each operation and friction factor while the string is run in to each depth
+    (``string_to_depth``: the bottom-hole assembly kept, pipe added at the top), the usual broomstick plot.
+
+    Each friction factor is the open-hole one and, unless ``cased_hole_friction`` is among the ``conditions``,
+    the cased-hole one too (the usual practice: a known casing factor, the open-hole one calibrated against the
+    plot). ``depths``: the bit depths [m] (default every ``depth_step`` metres and the string's full length).
+    Rotating off bottom carries no axial friction: its hook load is the same for every friction factor.
+    """
+    factors = tuple(float(mu) for mu in friction_factors)
+    if not factors:
+        raise InvalidParameterError("broomstick: friction_factors must hold at least one value", "friction_factors")
+    for op in operations:
+        if op not in OPERATIONS:
+            raise InvalidParameterError(f"broomstick: operation must be one of {', '.join(OPERATIONS)} (got {op!r})",
+                                        "operations")
+    if depths is None:
+        if not (math.isfinite(depth_step) and depth_step > 0.0):
+            raise InvalidParameterError(f"broomstick: depth_step must be positive and finite (got {depth_step!r})",
+                                        "depth_step")
+        grid = np.arange(depth_step, string.length, depth_step)
+        depths = np.append(grid[grid < string.length - 1e-9 * string.length], string.length)
+    vary_cased = "cased_hole_friction" not in conditions
+    rows: Dict[str, list] = {"bit_depth": [], "friction_factor": [], "operation": [], "hook_load": [],
+                             "surface_torque": []}
+    for depth in depths:
+        model = soft_string(survey, string_to_depth(string, float(depth)), element_length=element_length)
+        for mu in factors:
+            given = dict(conditions, open_hole_friction=mu)
+            if vary_cased:
+                given["cased_hole_friction"] = mu
+            for op in operations:
+                result = model.run(op, **given)
+                rows["bit_depth"].append(float(depth))
+                rows["friction_factor"].append(mu)
+                rows["operation"].append(op)
+                rows["hook_load"].append(result.hook_load)
+                rows["surface_torque"].append(result.surface_torque)
+    import pandas as pd
+
+    return Broomstick(pd.DataFrame(rows), factors, tuple(operations), dict(conditions))
+
+
+# ----------------------------------------------------------------------------------------------------------- plots
+def plot_broomstick(chart: Broomstick, ax=None, *, title: str = ""):
+    """Hook load [kN] against bit depth [m] (depth down) per operation and friction factor; returns the Axes (a new
+    figure's when ``ax`` is None)."""
+    from .plots import broomstick_axes
+
+    return broomstick_axes(chart, ax=ax, title=title)
+
+
+def plot_well_path(survey: Survey, ax=None, *, view: str = "section", title: str = ""):
+    """The well's path: ``view="section"`` true vertical depth against horizontal departure, ``"plan"`` north
+    against east; returns the Axes (a new figure's when ``ax`` is None)."""
+    from .plots import well_path_axes
+
+    return well_path_axes(survey, ax=ax, view=view, title=title)
