@@ -1,9 +1,10 @@
 // Field-scale drill strings for Python (issue 13, item 3): fs.PipeSection and fs.DrillString (geometry and its
-// lumped model), fs.NavarroLopezBit (the velocity-weakening bit law, through bind_law) and fs.StringRig, the
-// event-driven string of drillstring/string_rig.hpp. The rig is held as one instantiation per wall law of
-// PythonLaws and per bit (off bottom, or the velocity-weakening bit under a weight on bit): 2 x 7 alternatives,
-// no virtual call in the right-hand side. Keywords, properties, repr, pickling and the docstring come from the
-// tables (PipeSection::fields, StringRigParams::fields, NavarroLopezBit::fields).
+// lumped model), fs.NavarroLopezBit (the velocity-weakening bit law, through bind_law), DetournayBit (the drag bit's
+// depth-of-cut law, a table like PipeSection's) and fs.StringRig, the event-driven string of
+// drillstring/string_rig.hpp. The rig is held as one instantiation per wall law of PythonLaws and per bit (off
+// bottom, the velocity-weakening bit or the Detournay bit under a weight on bit): 3 x 7 alternatives, no virtual
+// call in the right-hand side. Keywords, properties, repr, pickling and the docstring come from the tables
+// (PipeSection::fields, StringRigParams::fields, NavarroLopezBit::fields, DetournayBit::fields).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -27,19 +28,24 @@ namespace {
 constexpr const char* rig_name = "StringRig";
 constexpr auto section_fields = PipeSection::fields();
 constexpr auto rig_fields = StringRigParams::fields();
+constexpr auto detournay_fields = DetournayBit::fields;
 /// More elements than any string needs (a 6 km string at 1 m): a guard against a typo allocating gigabytes.
 constexpr long max_elements = 100000;
 
 template <class Law> using OffBottomRig = StringRig<Law, OffBottom>;
 template <class Law> using OnBottomRig = StringRig<Law, VelocityWeakeningBit>;
+template <class Law> using DetournayRig = StringRig<Law, DetournayBitOnRock>;
 
-/// std::variant<StringRig<L, OffBottom>..., StringRig<L, VelocityWeakeningBit>...> over the laws of a list.
+/// std::variant<StringRig<L, OffBottom>..., StringRig<L, VelocityWeakeningBit>..., StringRig<L, DetournayBitOnRock>...>
+/// over the laws of a list.
 template <class Laws>
 struct string_rig_variant;
 template <class... L>
 struct string_rig_variant<TypeList<L...>> {
-    using type = std::variant<OffBottomRig<L>..., OnBottomRig<L>...>;
+    using type = std::variant<OffBottomRig<L>..., OnBottomRig<L>..., DetournayRig<L>...>;
 };
+/// The bit laws a Python StringRig takes.
+using BitLaw = std::variant<NavarroLopezBit, DetournayBit>;
 using StringRigVariant = string_rig_variant<PythonLaws>::type;
 
 const char* top_drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
@@ -159,18 +165,22 @@ py::array_t<T> to_array(const std::vector<T>& v) {
 struct BoundStringRig {
     DrillString string;
     FrictionLaw friction;
-    std::optional<NavarroLopezBit> bit;
+    std::optional<BitLaw> bit;
     double weight_on_bit = 0.0;
     StringRigParams params;
-    StringRigSetup setup;  ///< as given: empty contact_nodes / normal_forces mean "the rig's defaults"
-    bool contact_nodes_given = false, normal_forces_given = false;
+    /// as given: empty contact_nodes / normal_forces / node_inclinations mean "the rig's defaults"
+    StringRigSetup setup;
+    bool contact_nodes_given = false, normal_forces_given = false, inclinations_given = false;
+    bool start_hanging = false;  ///< start from the rig's hanging_state() (axial positions at rest)
     StringRigVariant rig;
 
-    BoundStringRig(DrillString s, FrictionLaw law, std::optional<NavarroLopezBit> b, double wob,
-                   const StringRigParams& p, StringRigSetup setup_in, bool nodes_given, bool forces_given)
+    BoundStringRig(DrillString s, FrictionLaw law, std::optional<BitLaw> b, double wob, const StringRigParams& p,
+                   StringRigSetup setup_in, bool nodes_given, bool forces_given, bool incline_given, bool hanging)
         : string(std::move(s)), friction(std::move(law)), bit(std::move(b)), weight_on_bit(wob), params(p),
           setup(std::move(setup_in)), contact_nodes_given(nodes_given), normal_forces_given(forces_given),
-          rig(build()) {}
+          inclinations_given(incline_given), start_hanging(hanging), rig(build()) {
+        if (start_hanging) std::visit([](auto& r) { r.set_initial_state(r.hanging_state()); }, rig);
+    }
 
     template <class F>
     decltype(auto) visit(F&& f) const { return std::visit(std::forward<F>(f), rig); }
@@ -180,9 +190,12 @@ private:
         return std::visit(
             [&](auto law) -> StringRigVariant {
                 using Law = decltype(law);
-                if (bit) return OnBottomRig<Law>(string, params, setup, std::move(law),
-                                                 VelocityWeakeningBit(*bit, weight_on_bit));
-                return OffBottomRig<Law>(string, params, setup, std::move(law));
+                if (!bit) return OffBottomRig<Law>(string, params, setup, std::move(law));
+                if (const auto* b = std::get_if<NavarroLopezBit>(&*bit))
+                    return OnBottomRig<Law>(string, params, setup, std::move(law),
+                                            VelocityWeakeningBit(*b, weight_on_bit));
+                return DetournayRig<Law>(string, params, setup, std::move(law),
+                                         DetournayBitOnRock(std::get<DetournayBit>(*bit), weight_on_bit));
             },
             friction);
     }
@@ -190,7 +203,8 @@ private:
 
 const std::vector<const char*> rig_extras{"bit",           "weight_on_bit", "elements",      "top_drive",
                                           "axial",         "hoisting",      "wall_contacts", "contact_nodes",
-                                          "normal_forces", "excitation_node"};
+                                          "normal_forces", "excitation_node", "node_inclinations",
+                                          "start_hanging"};
 
 BoundStringRig make_string_rig(py::handle string, py::handle friction, const py::kwargs& kwargs) {
     require_constructed(string);
@@ -199,9 +213,9 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     std::size_t used = 0;
     StringRigParams p = table_from_kwargs(kwargs, rig_fields, rig_name, used);
     StringRigSetup setup;
-    std::optional<NavarroLopezBit> bit;
+    std::optional<BitLaw> bit;
     std::optional<double> wob;
-    bool nodes_given = false, forces_given = false;
+    bool nodes_given = false, forces_given = false, inclinations_given = false, hanging = false;
     const auto given = [&](const char* key) {
         if (!kwargs.contains(key)) return false;
         ++used;
@@ -210,10 +224,12 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     if (given("bit")) {
         const py::handle b = kwargs["bit"];
         require_constructed(b);
-        if (!py::isinstance<NavarroLopezBit>(b))
-            throw py::type_error(std::string(rig_name) + ": bit must be a NavarroLopezBit or None (off bottom), got " +
+        if (py::isinstance<NavarroLopezBit>(b)) bit = b.cast<NavarroLopezBit>();
+        else if (py::isinstance<DetournayBit>(b)) bit = b.cast<DetournayBit>();
+        else
+            throw py::type_error(std::string(rig_name) +
+                                 ": bit must be a NavarroLopezBit, a DetournayBit or None (off bottom), got " +
                                  type_name(b));
-        bit = b.cast<NavarroLopezBit>();
     }
     if (given("weight_on_bit")) wob = real_from(kwargs["weight_on_bit"], "weight_on_bit");
     if (given("elements"))
@@ -254,6 +270,19 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     }
     if (given("excitation_node"))
         setup.excitation_node = count_from(kwargs["excitation_node"], "excitation_node", 0, max_elements);
+    if (given("start_hanging")) hanging = flag_from(kwargs["start_hanging"], "start_hanging");
+    if (given("node_inclinations")) {
+        inclinations_given = true;
+        const py::handle v = kwargs["node_inclinations"];
+        if (py::isinstance<py::str>(v) || !py::hasattr(v, "__iter__"))
+            throw py::type_error(std::string(rig_name) +
+                                 ": node_inclinations must be a sequence of angles in rad (got " + type_name(v) + ")");
+        for (py::handle a : v) setup.node_inclinations.push_back(real_from(a, "node_inclinations"));
+        if (setup.node_inclinations.empty())
+            throw InvalidParameter("node_inclinations", std::string(rig_name) +
+                                                            ": node_inclinations must hold one angle per node (None: "
+                                                            "the straight hole's inclination)");
+    }
     if (used != kwargs.size()) refuse_unknown_keyword(kwargs, rig_fields, rig_extras, rig_name);
     if (bit && !wob)
         throw InvalidParameter("weight_on_bit", std::string(rig_name) +
@@ -262,12 +291,12 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
         throw InvalidParameter("weight_on_bit", std::string(rig_name) +
                                                     ": weight_on_bit needs a bit (bit=None: the bit is off bottom)");
     return BoundStringRig(string.cast<DrillString>(), friction_law_from_python(friction, "friction"), bit,
-                          wob.value_or(0.0), p, setup, nodes_given, forces_given);
+                          wob.value_or(0.0), p, setup, nodes_given, forces_given, inclinations_given, hanging);
 }
 
 py::dict rig_extras_of(const BoundStringRig& r) {
     py::dict d;
-    d["bit"] = r.bit ? py::cast(*r.bit) : py::none();
+    d["bit"] = r.bit ? std::visit([](const auto& b) { return py::cast(b); }, *r.bit) : py::object(py::none());
     d["weight_on_bit"] = r.bit ? py::cast(r.weight_on_bit) : py::none();
     d["elements"] = r.setup.elements;
     d["top_drive"] = top_drive_name(r.setup.top_drive);
@@ -277,6 +306,8 @@ py::dict rig_extras_of(const BoundStringRig& r) {
     d["contact_nodes"] = r.contact_nodes_given ? py::cast(r.setup.contact_nodes) : py::none();
     d["normal_forces"] = r.normal_forces_given ? py::cast(r.setup.normal_forces) : py::none();
     d["excitation_node"] = r.setup.excitation_node;
+    d["node_inclinations"] = r.inclinations_given ? py::cast(r.setup.node_inclinations) : py::none();
+    d["start_hanging"] = r.start_hanging;
     return d;
 }
 
@@ -325,15 +356,18 @@ elements of equal length, node 0 at the top, node N at the bit), in torsion and 
 Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
 +-T_max) with anti-windup, or a prescribed surface speed. A wall contact at each chosen node with `friction` (any
 law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
-inclined hole's buoyed weight w_b sin I. Torsion-only: exact per-contact stick; axial=True: friction against the
-resultant of axial and circumferential sliding (paper 000's friction vector). The bit: None (off bottom) or a
-NavarroLopezBit under weight_on_bit W [N] on node N (velocity weakening, exact stick).
+inclined hole's buoyed weight w_b sin I (per node with node_inclinations). Torsion-only: exact per-contact stick;
+axial=True: friction against the resultant of axial and circumferential sliding (paper 000's friction vector),
+stick caught at stick_speed, slow slip below it where a node cannot hold. The bit: None (off bottom), a
+NavarroLopezBit (velocity weakening, exact stick) or a DetournayBit (depth of cut d at W, torque
+c eps a^2 d + c gamma mu a (a l sigma) turning forwards, sticking within it; no delayed depth of cut) under
+weight_on_bit W [N] on node N.
 
 Parameters
 ----------
 string : DrillString
 friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw) of the wall contacts
-bit : NavarroLopezBit or None
+bit : NavarroLopezBit, DetournayBit or None
     None: the bit hangs off bottom (node N may carry a wall contact).
 weight_on_bit : float or None
     W [N], required with a bit.
@@ -349,9 +383,16 @@ wall_contacts : bool = True
 contact_nodes : sequence of int or None
     Nodes with a wall contact, increasing, in 1..N (below N with the bit on bottom). None: every such node.
 normal_forces : sequence of float or None
-    One normal force [N] per contact node. None: w_b sin(inclination) per node.
+    One normal force [N] per contact node. None: w_b sin(I_i) per node. In a curved well: the soft-string side
+    forces lumped to the nodes (e.g. SoftString.node_side_forces of the string hanging at rest).
 excitation_node : int = 0
     Node of the axial excitation F_x sin(2 pi f_x t).
+node_inclinations : sequence of float or None
+    One hole inclination I_i [rad, 0..pi] per node 0..N (axial gravity w_b,i cos I_i; e.g. from a Survey at the
+    nodes' measured depths). None: `inclination` at every node.
+start_hanging : bool = False
+    Start (axial runs) with the string hanging at rest from the top node without wall friction: each element
+    stretched by the buoyed weight along the hole below it (less W on bottom), so no axial transient.
 
 States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
 law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
@@ -470,6 +511,55 @@ with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's paramete
         .def("static_limit", py::vectorize([](NavarroLopezBit& b, double weight) { return b.static_limit(weight); }),
              py::arg("weight_on_bit"), "R_b W mu_sb [N m]: the largest torque the stuck bit holds.");
 
+    // ---- DetournayBit: the drag bit's depth-of-cut law, a table like PipeSection's
+    py::class_<DetournayBit> drag(m, "DetournayBit", kept(R"doc(
+Drag bit of Detournay & Defourny (1992), as in Richard, Germay & Detournay (2007, Sec. 2): weight and torque on bit
+are a cutting part proportional to the depth of cut per revolution d plus a frictional contact part (wear flats):
+
+    W = zeta eps a d + a l sigma,   T = c eps a^2 d + c gamma mu a (a l sigma)
+
+c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half. As a StringRig's bit
+under weight_on_bit W: d = depth_at_weight(W), T turning forwards whatever the speed, the stuck bit held within
+|T| (turning backwards only the wear flats rub). The delayed depth of cut of Richard-Germay-Detournay (axial-
+torsional coupling through a state-dependent delay) is not modelled. Defaults: an illustrative 8.5" PDC bit.
+
+Keywords
+--------
+)doc" + keywords_doc(detournay_fields)));
+    def_field_properties(drag, detournay_fields, [](const DetournayBit& b) -> const DetournayBit::Params& {
+        return b.params();
+    });
+    options.disable_function_signatures();
+    drag.def(py::init([](const py::kwargs& kwargs) {
+                 std::size_t used = 0;
+                 const DetournayBit::Params p = table_from_kwargs(kwargs, detournay_fields, "DetournayBit", used);
+                 if (used != kwargs.size()) refuse_unknown_keyword(kwargs, detournay_fields, {}, "DetournayBit");
+                 return DetournayBit(p);
+             }),
+             kept(table_signature("", detournay_fields, "") + "\nThe bit's parameters by keyword.\n"));
+    options.enable_function_signatures();
+    drag.def_property_readonly("contact_force", &DetournayBit::contact_force, "W_f = a l sigma [N].")
+        .def_property_readonly("contact_torque", &DetournayBit::contact_torque,
+                               "T_f = c gamma mu a W_f [N m]: the wear flats' torque.")
+        .def("depth_at_weight", py::vectorize([](DetournayBit& b, double weight) {
+                 return b.depth_at_weight(weight);
+             }),
+             py::arg("weight_on_bit"),
+             "Steady depth of cut per revolution d = (W - a l sigma) / (zeta eps a) [m] at weight on bit W [N] "
+             "(0 below the contact force).")
+        .def("weight_on_bit", py::vectorize([](DetournayBit& b, double depth) { return b.weight_on_bit(depth); }),
+             py::arg("depth_of_cut"), "W = zeta eps a d + a l sigma [N] at depth of cut d [m].")
+        .def("torque_on_bit", py::vectorize([](DetournayBit& b, double depth) { return b.torque_on_bit(depth); }),
+             py::arg("depth_of_cut"), "T = c eps a^2 d + c gamma mu a (a l sigma) [N m] at depth of cut d [m].")
+        .def("__repr__", [](const DetournayBit& b) {
+            const std::string changed = changed_fields_repr(b.params(), detournay_fields);  // ", key=value..."
+            return "DetournayBit(" + (changed.empty() ? changed : changed.substr(2)) + ")";
+        })
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(),
+                                          field_keywords(self.cast<const DetournayBit&>().params(), detournay_fields));
+        });
+
     // ---- StringRig
     py::class_<BoundStringRig> cls(m, rig_name, kept(rig_description + keywords_doc(rig_fields)));
     def_field_properties(cls, rig_fields, [](const BoundStringRig& r) -> const StringRigParams& { return r.params; });
@@ -477,7 +567,8 @@ with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's paramete
         ", bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, "
         "top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, "
         "contact_nodes: collections.abc.Sequence[int] | None = None, "
-        "normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0";
+        "normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, "
+        "node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False";
     options.disable_function_signatures();
     cls.def(py::init([](py::handle s, py::handle friction, const py::kwargs& kwargs) {
                 return make_string_rig(s, friction, kwargs);
@@ -490,8 +581,17 @@ with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's paramete
     cls.def_property_readonly("string", [](const BoundStringRig& r) { return r.string; }, "The DrillString.")
         .def_property_readonly("friction", [](const BoundStringRig& r) { return friction_law_to_python(r.friction); },
                                "The wall contacts' friction law.")
-        .def_property_readonly("bit", [](const BoundStringRig& r) { return r.bit ? py::cast(*r.bit) : py::none(); },
-                               "The bit law (NavarroLopezBit), or None off bottom.")
+        .def_property_readonly("bit",
+                               [](const BoundStringRig& r) {
+                                   return r.bit ? std::visit([](const auto& b) { return py::cast(b); }, *r.bit)
+                                                : py::object(py::none());
+                               },
+                               "The bit law (NavarroLopezBit or DetournayBit), or None off bottom.")
+        .def_property_readonly("node_inclinations",
+                               [](const BoundStringRig& r) {
+                                   return to_array(r.visit([](const auto& s) { return s.node_inclinations(); }));
+                               },
+                               "The hole inclination at each node [rad] (as the rig placed them).")
         .def_property_readonly("weight_on_bit",
                                [](const BoundStringRig& r) { return r.bit ? py::cast(r.weight_on_bit) : py::none(); },
                                "W [N], or None off bottom.")
@@ -551,6 +651,14 @@ with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's paramete
              "surface applies [N m] at each row (t [s], states (rows, states)): the motor's under PI control, what "
              "holds the prescribed speed otherwise.",
              py::arg("t"), py::arg("states"))
+        .def("hook_force", [](const BoundStringRig& r, StatesArray t, StatesArray states) {
+                 return per_row(r, t, states, [](const auto& s, double time, const double* x, const ContactModes& md) {
+                     return s.hook_force(time, x, md);
+                 });
+             },
+             "The hook's force on the string [N], positive up, at each row (t [s], states (rows, states)): the hook "
+             "load, or what holds the prescribed hook speed (axial runs; 0 in torsion-only runs).",
+             py::arg("t"), py::arg("states"))
         .def("bit_torque", [](const BoundStringRig& r, StatesArray t, StatesArray states) {
                  return per_row(r, t, states, [](const auto& s, double time, const double* x, const ContactModes& md) {
                      return s.bit_torque(time, x, md);
@@ -584,6 +692,7 @@ with bit speed w [rad/s] and weight on bit W [N]. Defaults: the paper's paramete
                 if (key == "hoisting" && r.setup.hoisting == defaults.hoisting) continue;
                 if (key == "wall_contacts" && r.setup.wall_contacts == defaults.wall_contacts) continue;
                 if (key == "excitation_node" && r.setup.excitation_node == defaults.excitation_node) continue;
+                if (key == "start_hanging" && !r.start_hanging) continue;
                 out += ", " + key + "=" + std::string(py::repr(v));
             }
             return out + changed_fields_repr(r.params, rig_fields) + ")";

@@ -1,7 +1,11 @@
 """Field-scale drill strings: what a run of a :class:`frictionsim.StringRig` gives.
 
 The model is C++ (``include/frictionsim/drillstring/string_rig.hpp``): :class:`~frictionsim.PipeSection`,
-:class:`~frictionsim.DrillString`, :class:`~frictionsim.NavarroLopezBit` and :class:`~frictionsim.StringRig`.
+:class:`~frictionsim.DrillString`, the bits :class:`~frictionsim.NavarroLopezBit` (velocity weakening) and
+:class:`DetournayBit` (the drag bit's depth of cut under the weight on bit) and :class:`~frictionsim.StringRig`.
+A string in a curved well takes the hole's inclination and the wall's normal force per node as arrays
+(``node_inclinations``, ``normal_forces``), computed from a survey or anything else; ``start_hanging=True`` starts
+an axial run from the string hanging at rest.
 This module reads a :class:`~frictionsim.Result` of one by the rig's own state layout (``rig.omega_index``, the
 rig's ``surface_torque`` / ``bit_torque``), so no column arithmetic is repeated here, and measures stick-slip
 the way a stick-slip map needs it.
@@ -21,10 +25,11 @@ from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
-from ._core import DrillString, NavarroLopezBit, PipeSection, StringRig
+from ._core import DetournayBit, DrillString, NavarroLopezBit, PipeSection, StringRig
 from .result import Result
 
 __all__ = [
+    "DetournayBit",
     "DrillString",
     "NavarroLopezBit",
     "PipeSection",
@@ -34,6 +39,7 @@ __all__ = [
     "bit_speed",
     "bit_torque",
     "field_string",
+    "hook_load",
     "replace",
     "stick_slip",
     "stick_slip_map",
@@ -90,6 +96,12 @@ def bit_torque(rig: StringRig, result: Result) -> np.ndarray:
     """Torque on bit [N m] at each row (0 off bottom; the holding torque while the bit sticks: the mode of each
     row is rebuilt from its state, speeds below :data:`AT_REST` counting as zero)."""
     return rig.bit_torque(result.t, _states_at_rest(rig, result))
+
+
+def hook_load(rig: StringRig, result: Result) -> np.ndarray:
+    """The hook's force on the string [N], positive up, at each row: the prescribed hook load, or what holds the
+    prescribed hook speed (axial runs; 0 in torsion-only runs)."""
+    return rig.hook_force(result.t, result.states)
 
 
 def stuck_contacts(result: Result) -> np.ndarray:

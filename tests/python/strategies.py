@@ -73,6 +73,7 @@ LAWS: Dict[type, Dict[str, Param]] = {law: _law_params(law) for law in fs.FRICTI
 #: (built from its keywords alone, a section or a rig has no rule across them that a nudge would find; the rules
 #: across tables, ID < OD and mud lighter than steel, are the tests' to check).
 TABLES: Dict[type, Dict[str, Param]] = {fs.NavarroLopezBit: _law_params(fs.NavarroLopezBit),
+                                        fs.DetournayBit: _law_params(fs.DetournayBit),
                                         fs.PipeSection: _law_params(fs.PipeSection, tied_by_construction=False),
                                         fs.StringRig: _law_params(fs.StringRig, tied_by_construction=False)}
 
