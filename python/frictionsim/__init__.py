@@ -1,8 +1,9 @@
 """frictionsim: friction-driven dynamics in drilling.
 
 A C++17 engine (stick-slip located as events, exact restarts, Dormand-Prince 5(4) and SUNDIALS CVODE) with the
-friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel), paper 001 (torsional rig)
-and field-scale drill strings (StringRig on a DrillString of PipeSections, frictionsim.drillstring); Python adds
+friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel), paper 001 (torsional rig),
+field-scale drill strings (StringRig on a DrillString of PipeSections, frictionsim.drillstring) and torque and drag
+along a well survey (Survey, SoftString, frictionsim.wells); Python adds
 fitting, signal processing, plots, sweeps and a command line. SI units throughout.
 
     >>> import frictionsim as fs
@@ -14,6 +15,7 @@ fitting, signal processing, plots, sweeps and a command line. SI units throughou
 from ._core import (
     FRICTION_LAWS,
     AxialVibrationRig,
+    DetournayBit,
     DrillString,
     HystereticFriction,
     KinematicRig,
@@ -21,7 +23,11 @@ from ._core import (
     Parameter,
     PipeSection,
     PowerLawCoefficient,
+    SoftString,
+    StopCondition,
     StringRig,
+    Survey,
+    TorqueDragResult,
     TorsionalRig,
     table5,
     vibration_velocity_amplitude,
@@ -44,6 +50,7 @@ __all__ = [
     "BudgetExceededError",
     "CallableLaw",
     "ChatteringError",
+    "DetournayBit",
     "DrillString",
     "HystereticFriction",
     "Event",
@@ -58,7 +65,11 @@ __all__ = [
     "PowerLawCoefficient",
     "Result",
     "SimulationError",
+    "SoftString",
+    "StopCondition",
     "StringRig",
+    "Survey",
+    "TorqueDragResult",
     "TorsionalRig",
     "simulate",
     "sweep",
@@ -73,6 +84,6 @@ def __getattr__(name: str):
     import importlib
 
     if name in ("axial", "cli", "contact", "data", "demo", "drillstring", "fit", "plots", "scenario", "signal",
-                "torsional"):
+                "torsional", "wells"):
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'frictionsim' has no attribute {name!r}")

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -1236,6 +1236,108 @@ class NavarroLopezBit:
         """
         gamma_b [-]: Rate of the exponential decay from mu_sb to mu_cb.
         """
+class DetournayBit:
+    """
+    Drag bit of Detournay & Defourny (1992), as in Richard, Germay & Detournay (2007, Sec. 2): weight and torque on bit
+    are a cutting part proportional to the depth of cut per revolution d plus a frictional contact part (wear flats):
+    
+        W = zeta eps a d + a l sigma,   T = c eps a^2 d + c gamma mu a (a l sigma)
+    
+    c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half. As a StringRig's bit
+    under weight_on_bit W: d = depth_at_weight(W), T turning forwards whatever the speed, the stuck bit held within
+    |T| (turning backwards only the wear flats rub). The delayed depth of cut of Richard-Germay-Detournay (axial-
+    torsional coupling through a state-dependent delay) is not modelled. Defaults: an illustrative 8.5" PDC bit.
+    
+    Keywords
+    --------
+    bit_radius : float = 0.108
+        a [m], positive and finite: Bit radius.
+    intrinsic_specific_energy : float = 110000000
+        eps [Pa], positive and finite: Intrinsic specific energy: energy to cut a unit volume of rock.
+    cutting_force_ratio : float = 0.6
+        zeta [-], positive and finite: Ratio of the normal to the tangential cutting force.
+    contact_strength : float = 60000000
+        sigma [Pa], non-negative and finite: Normal stress transmitted by the wear flats.
+    wearflat_length : float = 0.0012
+        l [m], non-negative and finite: Total length of the wear flats (0: a sharp bit, no frictional contact).
+    friction_coefficient : float = 0.6
+        mu [-], non-negative and finite: Friction coefficient on the wear flats.
+    contact_orientation : float = 1
+        gamma [-], positive and finite: Bit constant: orientation and spatial distribution of the contact forces.
+    torque_constant : float = 0.5
+        c [-], positive and finite (1/2 in Detournay & Defourny's convention, 1 in others): Constant of the torque: T = c (eps a^2 d + gamma mu a W_f).
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, *, bit_radius: float = 0.108, intrinsic_specific_energy: float = 110000000, cutting_force_ratio: float = 0.6, contact_strength: float = 60000000, wearflat_length: float = 0.0012, friction_coefficient: float = 0.6, contact_orientation: float = 1, torque_constant: float = 0.5) -> None:
+        """
+        The bit's parameters by keyword.
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def depth_at_weight(self, weight_on_bit: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        Steady depth of cut per revolution d = (W - a l sigma) / (zeta eps a) [m] at weight on bit W [N] (0 below the contact force).
+        """
+    def torque_on_bit(self, depth_of_cut: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        T = c eps a^2 d + c gamma mu a (a l sigma) [N m] at depth of cut d [m].
+        """
+    def weight_on_bit(self, depth_of_cut: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        W = zeta eps a d + a l sigma [N] at depth of cut d [m].
+        """
+    @property
+    def bit_radius(self) -> float:
+        """
+        a [m]: Bit radius.
+        """
+    @property
+    def contact_force(self) -> float:
+        """
+        W_f = a l sigma [N].
+        """
+    @property
+    def contact_orientation(self) -> float:
+        """
+        gamma [-]: Bit constant: orientation and spatial distribution of the contact forces.
+        """
+    @property
+    def contact_strength(self) -> float:
+        """
+        sigma [Pa]: Normal stress transmitted by the wear flats.
+        """
+    @property
+    def contact_torque(self) -> float:
+        """
+        T_f = c gamma mu a W_f [N m]: the wear flats' torque.
+        """
+    @property
+    def cutting_force_ratio(self) -> float:
+        """
+        zeta [-]: Ratio of the normal to the tangential cutting force.
+        """
+    @property
+    def friction_coefficient(self) -> float:
+        """
+        mu [-]: Friction coefficient on the wear flats.
+        """
+    @property
+    def intrinsic_specific_energy(self) -> float:
+        """
+        eps [Pa]: Intrinsic specific energy: energy to cut a unit volume of rock.
+        """
+    @property
+    def torque_constant(self) -> float:
+        """
+        c [-]: Constant of the torque: T = c (eps a^2 d + gamma mu a W_f).
+        """
+    @property
+    def wearflat_length(self) -> float:
+        """
+        l [m]: Total length of the wear flats (0: a sharp bit, no frictional contact).
+        """
 class StringRig:
     """
     A drill string on the event-driven engine (drillstring/string_rig.hpp): the lumped string of a DrillString (N
@@ -1248,15 +1350,18 @@ class StringRig:
     Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
     +-T_max) with anti-windup, or a prescribed surface speed. A wall contact at each chosen node with `friction` (any
     law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
-    inclined hole's buoyed weight w_b sin I. Torsion-only: exact per-contact stick; axial=True: friction against the
-    resultant of axial and circumferential sliding (paper 000's friction vector). The bit: None (off bottom) or a
-    NavarroLopezBit under weight_on_bit W [N] on node N (velocity weakening, exact stick).
+    inclined hole's buoyed weight w_b sin I (per node with node_inclinations). Torsion-only: exact per-contact stick;
+    axial=True: friction against the resultant of axial and circumferential sliding (paper 000's friction vector),
+    stick caught at stick_speed, slow slip below it where a node cannot hold. The bit: None (off bottom), a
+    NavarroLopezBit (velocity weakening, exact stick) or a DetournayBit (depth of cut d at W, torque
+    c eps a^2 d + c gamma mu a (a l sigma) turning forwards, sticking within it; no delayed depth of cut) under
+    weight_on_bit W [N] on node N.
     
     Parameters
     ----------
     string : DrillString
     friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw) of the wall contacts
-    bit : NavarroLopezBit or None
+    bit : NavarroLopezBit, DetournayBit or None
         None: the bit hangs off bottom (node N may carry a wall contact).
     weight_on_bit : float or None
         W [N], required with a bit.
@@ -1272,9 +1377,16 @@ class StringRig:
     contact_nodes : sequence of int or None
         Nodes with a wall contact, increasing, in 1..N (below N with the bit on bottom). None: every such node.
     normal_forces : sequence of float or None
-        One normal force [N] per contact node. None: w_b sin(inclination) per node.
+        One normal force [N] per contact node. None: w_b sin(I_i) per node. In a curved well: the soft-string side
+        forces lumped to the nodes (e.g. SoftString.node_side_forces of the string hanging at rest).
     excitation_node : int = 0
         Node of the axial excitation F_x sin(2 pi f_x t).
+    node_inclinations : sequence of float or None
+        One hole inclination I_i [rad, 0..pi] per node 0..N (axial gravity w_b,i cos I_i; e.g. from a Survey at the
+        nodes' measured depths). None: `inclination` at every node.
+    start_hanging : bool = False
+        Start (axial runs) with the string hanging at rest from the top node without wall friction: each element
+        stretched by the buoyed weight along the hole below it (less W on bottom), so no axial transient.
     
     States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
     law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
@@ -1320,7 +1432,7 @@ class StringRig:
         m_end [kg], non-negative and finite: Mass of a rigid BHA added to the bit node.
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.28318530718, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0) -> None:
+    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.28318530718, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
         """
         The string, the wall law, then the rig's set-up and parameters by keyword (see the class docstring).
         """
@@ -1333,6 +1445,10 @@ class StringRig:
     def bit_torque(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
         """
         The torque on bit [N m] at each row (0 off bottom; the holding torque while the bit sticks).
+        """
+    def hook_force(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The hook's force on the string [N], positive up, at each row (t [s], states (rows, states)): the hook load, or what holds the prescribed hook speed (axial runs; 0 in torsion-only runs).
         """
     def omega_index(self, node: typing.SupportsInt | typing.SupportsIndex) -> int:
         """
@@ -1356,7 +1472,7 @@ class StringRig:
     @property
     def bit(self) -> typing.Any:
         """
-        The bit law (NavarroLopezBit), or None off bottom.
+        The bit law (NavarroLopezBit or DetournayBit), or None off bottom.
         """
     @property
     def contact_nodes(self) -> list[int]:
@@ -1438,6 +1554,11 @@ class StringRig:
     def mud_density(self) -> float:
         """
         rho_mud [kg/m^3]: Mud density (buoyancy); below the steel's.
+        """
+    @property
+    def node_inclinations(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The hole inclination at each node [rad] (as the rig placed them).
         """
     @property
     def node_inertia(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -1960,6 +2081,236 @@ class AxialVibrationRig:
     def vibration_velocity_amplitude(self) -> float:
         """
         v_a = 2 pi f u0 [m/s] (eq 16).
+        """
+class Survey:
+    """
+    A well survey: stations of measured depth [m], inclination from vertical [rad, 0..pi] and azimuth from north
+    towards east [rad], measured depth strictly increasing; its minimum-curvature trajectory (Sawaryn & Thorogood 2005,
+    SPE 84246): between two stations the circular arc tangent to both station directions.
+    
+    Survey(measured_depth, inclination, azimuth) takes radians; Survey.from_degrees(...) takes degrees (as survey
+    listings give them). Positions are relative to the first station: north, east and true vertical depth [m] per
+    station; dogleg [rad] and dogleg_severity [rad/m] per station of the course ending there (0 at station 0).
+    A bad survey (fewer than two stations, NaN, depth not increasing, inclination outside 0..180 degrees, a course that
+    reverses the direction) raises InvalidParameterError (a ValueError) naming the station and the field.
+    """
+    @staticmethod
+    def from_degrees(measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, azimuth: numpy.typing.ArrayLike) -> Survey:
+        """
+        Stations with measured depth [m], inclination and azimuth in degrees (errors quote degrees).
+        """
+    def __init__(self, measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, azimuth: numpy.typing.ArrayLike) -> None:
+        """
+        Stations in SI: measured depth [m], inclination and azimuth [rad].
+        """
+    def __len__(self) -> int:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def interpolate(self, measured_depth: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
+        """
+        The well at each measured depth [m] (within the survey) on the minimum-curvature arcs: a dict of arrays measured_depth, inclination and azimuth [rad] (azimuth in [0, 2 pi)), north, east, tvd [m] and curvature [rad/m] (the dogleg severity of the course holding it).
+        """
+    @property
+    def azimuth(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Azimuth of each station as given [rad].
+        """
+    @property
+    def dogleg(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Dogleg angle of the course ending at each station [rad] (0 at station 0).
+        """
+    @property
+    def dogleg_severity(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Dogleg severity of the course ending at each station [rad/m] (0 at station 0); times 180/pi * 30 for degrees per 30 m.
+        """
+    @property
+    def east(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        East of each station relative to station 0 [m].
+        """
+    @property
+    def inclination(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Inclination of each station [rad].
+        """
+    @property
+    def measured_depth(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Measured depth of each station [m].
+        """
+    @property
+    def north(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        North of each station relative to station 0 [m].
+        """
+    @property
+    def tvd(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        True vertical depth of each station relative to station 0 [m].
+        """
+class TorqueDragResult:
+    """
+    Torque and drag of one operation along the string: per node (N + 1, node 0 at the surface) measured_depth [m],
+    tension (effective, compression < 0) [N], torque [N m], the Dawson-Paslay sinusoidal and Chen-Lin-Cheatham helical
+    buckling loads [N] and the flags where the compression exceeds them; per element (N) side_force [N] and
+    side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_torque [N m] are node 0's.
+    """
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def helical_buckling_load(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Chen-Lin-Cheatham critical compression at each node [N].
+        """
+    @property
+    def helically_buckled(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        Compression above the helical buckling load, per node.
+        """
+    @property
+    def hook_load(self) -> float:
+        """
+        Tension at the surface [N].
+        """
+    @property
+    def measured_depth(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Measured depth of each node [m].
+        """
+    @property
+    def operation(self) -> str:
+        ...
+    @property
+    def side_force(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Wall contact force of each element [N].
+        """
+    @property
+    def side_force_per_length(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Wall contact force per length of each element [N/m].
+        """
+    @property
+    def sinusoidal_buckling_load(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Dawson-Paslay critical compression at each node [N].
+        """
+    @property
+    def sinusoidally_buckled(self) -> numpy.typing.NDArray[numpy.bool]:
+        """
+        Compression above the sinusoidal buckling load, per node.
+        """
+    @property
+    def surface_torque(self) -> float:
+        """
+        Torque at the surface [N m].
+        """
+    @property
+    def tension(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Effective tension at each node [N] (compression < 0).
+        """
+    @property
+    def torque(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Torque at each node [N m].
+        """
+class SoftString:
+    """
+    Soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380) of a DrillString hung from measured
+    depth 0 along a Survey (which must reach the string's length), cut into `elements` elements of equal length: node 0
+    at the surface, node N at the bit, element e between nodes e and e + 1. From the bit up, per element:
+    
+        F_n = sqrt(F^2 (beta^2 - dI^2) + (F dI + W sin I_avg)^2)        side force (dI = I_top - I_bottom)
+        F_top = F + W dTVD/dL +/- mu_axial F_n,   M_top = M + mu_circ F_n r
+    
+    with W the buoyed weight g (m - rho_mud V), beta the element's dogleg on the minimum-curvature well and the
+    friction factor split between axial and circumferential sliding by the sliding-velocity vector (trip speed
+    against rotary speed: paper 000's friction vector). run(operation, **conditions) gives a TorqueDragResult; the
+    conditions are the keywords of SoftString.parameters (mud density, cased and open-hole friction factors, casing shoe,
+    hole sizes, speeds, weight and torque on bit), SI units. Operations: SoftString.operations.
+    
+    Conditions
+    ----------
+    mud_density : float = 1200
+        rho_m [kg/m^3], non-negative and finite: Mud density (inside and out).
+    cased_hole_friction : float = 0.25
+        mu_c [-], non-negative and finite: Friction factor inside the casing.
+    open_hole_friction : float = 0.3
+        mu_o [-], non-negative and finite: Friction factor in the open hole.
+    casing_shoe_depth : float = 0
+        MD_shoe [m], non-negative and finite: Measured depth of the casing shoe (0: no casing).
+    casing_inner_diameter : float = 0.2205
+        ID_c [m], positive and finite: Casing inner diameter (buckling clearance above the shoe).
+    hole_diameter : float = 0.2159
+        D_h [m], positive and finite: Open-hole diameter (buckling clearance below the shoe).
+    trip_speed : float = 0.3
+        v_trip [m/s], positive and finite: Axial speed of trips and reaming.
+    rate_of_penetration : float = 0.00833333333333
+        ROP [m/s], non-negative and finite: Axial speed while drilling.
+    rotary_speed : float = 12.5663706144
+        omega [rad/s], positive and finite: Rotary speed of the rotating operations.
+    weight_on_bit : float = 0
+        WOB [N], non-negative and finite: Weight on bit while drilling.
+    bit_torque : float = 0
+        TOB [N m], non-negative and finite: Torque on bit, rotary drilling.
+    """
+    operations: typing.ClassVar[tuple] = ('trip_in', 'trip_out', 'reaming', 'backreaming', 'rotating_off_bottom', 'sliding_drilling', 'rotary_drilling')
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, survey: Survey, string: DrillString, elements: int) -> None:
+        """
+        The string hung from measured depth 0 along the survey, in `elements` elements of equal length.
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def element_weights(self, mud_density: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Buoyed weight of each element [N] in mud of density mud_density [kg/m^3].
+        """
+    def node_side_forces(self, tension: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], mud_density: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The wall contact force at each node [N] for an effective tension per node (N + 1 values, surface first): each element's side force under the mean of its end tensions, half to each of its nodes.
+        """
+    def run(self, operation: str, *, mud_density: float = 1200, cased_hole_friction: float = 0.25, open_hole_friction: float = 0.3, casing_shoe_depth: float = 0, casing_inner_diameter: float = 0.2205, hole_diameter: float = 0.2159, trip_speed: float = 0.3, rate_of_penetration: float = 0.00833333333333, rotary_speed: float = 12.5663706144, weight_on_bit: float = 0, bit_torque: float = 0) -> TorqueDragResult:
+        """
+        Torque and drag of one operation (one of SoftString.operations) under the conditions given by keyword (the others keep their defaults; see SoftString.parameters).
+        """
+    @property
+    def element_length(self) -> float:
+        """
+        Length of each element [m].
+        """
+    @property
+    def elements(self) -> int:
+        """
+        N.
+        """
+    @property
+    def node_depths(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Measured depth of each node [m] (N + 1).
+        """
+    @property
+    def node_inclinations(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Inclination at each node [rad].
+        """
+    @property
+    def string(self) -> DrillString:
+        """
+        The DrillString (a copy).
+        """
+    @property
+    def survey(self) -> Survey:
+        """
+        The Survey (a copy).
         """
 def _rebuild(arg0: type, arg1: tuple, arg2: dict, arg3: str) -> typing.Any:
     """

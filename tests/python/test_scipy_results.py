@@ -9,9 +9,8 @@ import numpy as np
 import pytest
 
 import frictionsim as fs
-from frictionsim import _core
 
-StopCondition = _core.StopCondition
+StopCondition = fs.StopCondition
 
 
 def rig():
