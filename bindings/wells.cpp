@@ -2,7 +2,10 @@
 // curvature, its trajectory as NumPy arrays), fs.SoftString (drillstring/soft_string.hpp: Johancsik soft-string
 // torque and drag on a DrillString of fs.PipeSection) and fs.TorqueDragResult (per node and per element arrays).
 // The operating conditions of SoftString.run are SoftStringParams' table: keywords, SoftString.parameters and the
-// error names come from it. No physics here: conversions and names only.
+// error names come from it. Axial vibration tools (issue 14, items 3-4): fs.HydraulicOscillator (its table) and
+// SoftString.oscillators / sliding_weight_on_bit (drillstring/oscillator_drag.hpp: zone of influence, hook load and
+// torque change, the weight on bit transferred while sliding, the placement objective). No physics here:
+// conversions and names only.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -13,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include <frictionsim/drillstring/oscillator_drag.hpp>
 #include <frictionsim/drillstring/soft_string.hpp>
 
 #include "table_binding.hpp"
@@ -22,6 +26,8 @@ namespace frictionsim::python {
 namespace {
 
 constexpr auto condition_fields = SoftStringParams::fields();
+constexpr auto tool_fields = HydraulicOscillator::fields();
+constexpr auto drag_fields = OscillatorDragParams::fields();
 /// More elements than any well needs (a 10 km string at 1 cm): a guard against a typo allocating gigabytes.
 constexpr long max_elements = 1000000;
 
@@ -106,18 +112,65 @@ Operation operation_from(py::handle value) {
                                             std::string(py::repr(value)) + ")");
 }
 
-SoftStringParams conditions_from(const py::kwargs& kwargs) {
+template <class P, std::size_t N>
+bool names_field(const std::string& key, const std::array<Field<P>, N>& fields) {
+    for (const Field<P>& f : fields)
+        if (key == f.public_name()) return true;
+    return false;
+}
+
+/// The conditions of SoftStringParams' table from keywords; with `tools`, also OscillatorDragParams' (the
+/// estimate's settings) and `model` / `lubricant`. Any other keyword is a TypeError naming it.
+SoftStringParams conditions_from(const py::kwargs& kwargs, const char* owner = "SoftString.run",
+                                 OscillatorDragParams* tools = nullptr) {
     SoftStringParams p{};
-    const std::size_t used = read_field_keywords(p, kwargs, condition_fields, "SoftString.run");
+    std::size_t used = read_field_keywords(p, kwargs, condition_fields, owner);
+    if (tools) {
+        used += read_field_keywords(*tools, kwargs, drag_fields, owner);
+        if (kwargs.contains("model")) {
+            const py::handle m = kwargs["model"];
+            const std::string name = py::isinstance<py::str>(m) ? m.cast<std::string>() : "";
+            if (name == "friction_vector") tools->model = VibrationFrictionModel::friction_vector;
+            else if (name == "table5") tools->model = VibrationFrictionModel::table5;
+            else throw InvalidParameter("model", std::string(owner) + ": model must be 'friction_vector' or "
+                                                                      "'table5' (got " + std::string(py::repr(m)) + ")");
+            ++used;
+        }
+        if (kwargs.contains("lubricant")) {
+            const py::handle l = kwargs["lubricant"];
+            if (!py::isinstance<py::str>(l))
+                throw InvalidParameter("lubricant", std::string(owner) + ": lubricant must be one of dry, water, "
+                                                                         "wbm, obm, sbm (got " + type_name(l) + ")");
+            tools->lubricant = lubricant_from_name(l.cast<std::string>());
+            ++used;
+        }
+    }
     if (used != kwargs.size())
         for (auto item : kwargs) {
             const std::string key = py::str(item.first);
-            bool known = false;
-            for (const Field<SoftStringParams>& f : condition_fields) known = known || key == f.public_name();
-            if (!known) throw py::type_error("SoftString.run() got an unexpected keyword argument '" + key + "'");
+            const bool known = names_field(key, condition_fields) ||
+                               (tools && (names_field(key, drag_fields) || key == "model" || key == "lubricant"));
+            if (!known) throw py::type_error(std::string(owner) + "() got an unexpected keyword argument '" + key + "'");
         }
-    validate_fields("SoftString.run", p, condition_fields);
+    validate_fields(owner, p, condition_fields);
+    if (tools) validate_fields(owner, *tools, drag_fields);
     return p;
+}
+
+std::vector<HydraulicOscillator> tools_from(py::handle tools, const char* owner) {
+    if (py::isinstance<HydraulicOscillator>(tools)) return {tools.cast<HydraulicOscillator>()};
+    if (py::isinstance<py::str>(tools) || !py::hasattr(tools, "__iter__"))
+        throw py::type_error(std::string(owner) + ": tools must be a HydraulicOscillator or a sequence of them (got " +
+                             type_name(tools) + ")");
+    std::vector<HydraulicOscillator> out;
+    for (py::handle t : tools) {
+        require_constructed(t);
+        if (!py::isinstance<HydraulicOscillator>(t))
+            throw py::type_error(std::string(owner) + ": tools must hold HydraulicOscillator objects (got " +
+                                 type_name(t) + ")");
+        out.push_back(t.cast<HydraulicOscillator>());
+    }
+    return out;
 }
 
 /// The Python SoftString: what it was built from (properties, pickling) and the model.
@@ -125,9 +178,11 @@ struct BoundSoftString {
     Survey survey;
     DrillString string;
     SoftString model;
+    OscillatorDrag tools;  // the same string with axial vibration tools
 
     BoundSoftString(Survey s, DrillString d, std::size_t elements)
-        : survey(std::move(s)), string(std::move(d)), model(survey, string, elements) {}
+        : survey(std::move(s)), string(std::move(d)), model(survey, string, elements),
+          tools(survey, string, elements) {}
 };
 
 std::size_t elements_from(py::handle value) {
@@ -289,6 +344,65 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                    " N, surface_torque=" + format_double(r.surface_torque()) + " N m)";
         });
 
+    // ---- HydraulicOscillator, OscillatorDragResult
+    py::class_<HydraulicOscillator> tool(m, "HydraulicOscillator", kept(
+        "An axial vibration tool (hydraulic oscillator, agitator) in the string: its force amplitude and frequency at "
+        "a measured depth (drillstring/axial_wave.hpp).\n\nKeywords\n--------\n" + keywords_doc(tool_fields)));
+    tool.def(py::init([](const py::kwargs& kwargs) {
+                 HydraulicOscillator t{};
+                 const std::size_t used = read_field_keywords(t, kwargs, tool_fields, "HydraulicOscillator");
+                 if (used != kwargs.size())
+                     for (auto item : kwargs)
+                         if (!names_field(py::str(item.first), tool_fields))
+                             throw py::type_error("HydraulicOscillator() got an unexpected keyword argument '" +
+                                                  std::string(py::str(item.first)) + "'");
+                 validate_fields("HydraulicOscillator", t, tool_fields);
+                 return t;
+             }));
+    def_field_properties(tool, tool_fields, [](const HydraulicOscillator& t) -> const HydraulicOscillator& { return t; });
+    tool.def("__repr__", [](const HydraulicOscillator& t) {
+            std::string fields;
+            for (const Field<HydraulicOscillator>& f : tool_fields)
+                fields += std::string(fields.empty() ? "" : ", ") + f.public_name() + "=" + format_double(t.*(f.member));
+            return "HydraulicOscillator(" + fields + ")";
+        })
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(), field_keywords(self.cast<const HydraulicOscillator&>(),
+                                                                            tool_fields));
+        });
+
+    py::class_<OscillatorDragResult>(m, "OscillatorDragResult",
+                                     "One operation with and without the tools: the plain and vibrated torque and "
+                                     "drag, per element the vibration amplitude and friction factors, the zone of "
+                                     "influence and the changes at the surface.")
+        .def_property_readonly("plain", [](const OscillatorDragResult& r) { return r.plain; },
+                               "TorqueDragResult without the tools (a copy).")
+        .def_property_readonly("vibrated", [](const OscillatorDragResult& r) { return r.vibrated; },
+                               "TorqueDragResult with them (a copy).")
+        .def_property_readonly("vibration_amplitude",
+                               [](const OscillatorDragResult& r) { return to_array(r.vibration_amplitude); },
+                               "Per element, the tools' axial velocity amplitude [m/s].")
+        .def_property_readonly("axial_factor", [](const OscillatorDragResult& r) { return to_array(r.multipliers.axial); },
+                               "Per element, the factor on the axial friction.")
+        .def_property_readonly("circumferential_factor",
+                               [](const OscillatorDragResult& r) { return to_array(r.multipliers.circumferential); },
+                               "Per element, the factor on the circumferential friction.")
+        .def_property_readonly("reduction", [](const OscillatorDragResult& r) { return to_array(r.reduction); },
+                               "Per element, 1 - the factor of the friction against the operation's motion.")
+        .def_readonly("zone_top", &OscillatorDragResult::zone_top, "Top of the zone of influence [m MD].")
+        .def_readonly("zone_bottom", &OscillatorDragResult::zone_bottom, "Bottom of the zone of influence [m MD].")
+        .def_readonly("zone_length", &OscillatorDragResult::zone_length,
+                      "Length of the elements reduced past zone_threshold [m] (0: no zone).")
+        .def_readonly("coupling_passes", &OscillatorDragResult::coupling_passes)
+        .def_readonly("converged", &OscillatorDragResult::converged)
+        .def_property_readonly("hook_load_change", &OscillatorDragResult::hook_load_change, "[N]")
+        .def_property_readonly("surface_torque_change", &OscillatorDragResult::surface_torque_change, "[N m]")
+        .def("__repr__", [](const OscillatorDragResult& r) {
+            return "OscillatorDragResult(zone " + format_double(r.zone_top) + " to " + format_double(r.zone_bottom) +
+                   " m, hook load change " + format_double(r.hook_load_change()) + " N, surface torque change " +
+                   format_double(r.surface_torque_change()) + " N m)";
+        });
+
     // ---- SoftString
     py::class_<BoundSoftString> cls(m, "SoftString", kept(soft_string_doc + std::string("\nConditions\n----------\n") +
                                                           keywords_doc(condition_fields)));
@@ -330,6 +444,36 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                                  "SoftString.operations) under the conditions given by keyword (the others keep "
                                  "their defaults; see SoftString.parameters).\n"),
             py::arg("operation"));
+    const std::string tool_keywords =
+        "Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), "
+        "zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle "
+        "mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).\n";
+    cls.def("oscillators",
+            [](const BoundSoftString& s, py::handle operation, py::handle tools, const py::kwargs& kwargs) {
+                const Operation op = operation_from(operation);
+                OscillatorDragParams o;
+                const SoftStringParams p = conditions_from(kwargs, "SoftString.oscillators", &o);
+                const std::vector<HydraulicOscillator> t = tools_from(tools, "SoftString.oscillators");
+                py::gil_scoped_release release;
+                return s.tools.run(op, p, t, o);
+            },
+            kept("oscillators(self, operation: str, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) "
+                 "-> OscillatorDragResult\n\nOne operation with and without axial vibration tools: each tool's wave "
+                 "attenuated by the wall friction it produces, the friction reduced element by element, coupled with "
+                 "the side forces until it settles.\n" + tool_keywords),
+            py::arg("operation"), py::arg("tools"));
+    cls.def("sliding_weight_on_bit",
+            [](const BoundSoftString& s, double hook_load, py::handle tools, const py::kwargs& kwargs) {
+                OscillatorDragParams o;
+                const SoftStringParams p = conditions_from(kwargs, "SoftString.sliding_weight_on_bit", &o);
+                const std::vector<HydraulicOscillator> t = tools_from(tools, "SoftString.sliding_weight_on_bit");
+                py::gil_scoped_release release;
+                return s.tools.weight_on_bit_at(hook_load, p, t, o);
+            },
+            kept("sliding_weight_on_bit(self, hook_load: float, tools: HydraulicOscillator | list[HydraulicOscillator], "
+                 "**keywords) -> float\n\nThe weight on bit [N] transferred while sliding at the hook load [N] with "
+                 "the tools (an empty list: without): the placement objective.\n" + tool_keywords),
+            py::arg("hook_load"), py::arg("tools"));
     options.enable_function_signatures();
     cls.def_property_readonly("survey", [](const BoundSoftString& s) { return s.survey; }, "The Survey (a copy).")
         .def_property_readonly("string", [](const BoundSoftString& s) { return s.string; },

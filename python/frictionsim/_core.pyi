@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'OscillatorDragResult', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -2220,6 +2220,108 @@ class TorqueDragResult:
         """
         Torque at each node [N m].
         """
+class HydraulicOscillator:
+    """
+    An axial vibration tool (hydraulic oscillator, agitator) in the string: its force amplitude and frequency at a measured depth (drillstring/axial_wave.hpp).
+    
+    Keywords
+    --------
+    measured_depth : float = 0
+        x_t [m], non-negative and finite: Measured depth of the tool (at most the string's length).
+    force_amplitude : float = 50000
+        F [N], non-negative and finite: Amplitude of the axial force the tool exerts.
+    frequency : float = 18
+        f [Hz], positive and finite: Frequency of the tool's force.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, **kwargs) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def force_amplitude(self) -> float:
+        """
+        F [N]: Amplitude of the axial force the tool exerts.
+        """
+    @property
+    def frequency(self) -> float:
+        """
+        f [Hz]: Frequency of the tool's force.
+        """
+    @property
+    def measured_depth(self) -> float:
+        """
+        x_t [m]: Measured depth of the tool (at most the string's length).
+        """
+class OscillatorDragResult:
+    """
+    One operation with and without the tools: the plain and vibrated torque and drag, per element the vibration amplitude and friction factors, the zone of influence and the changes at the surface.
+    """
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def axial_factor(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per element, the factor on the axial friction.
+        """
+    @property
+    def circumferential_factor(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per element, the factor on the circumferential friction.
+        """
+    @property
+    def converged(self) -> bool:
+        ...
+    @property
+    def coupling_passes(self) -> int:
+        ...
+    @property
+    def hook_load_change(self) -> float:
+        """
+        [N]
+        """
+    @property
+    def plain(self) -> TorqueDragResult:
+        """
+        TorqueDragResult without the tools (a copy).
+        """
+    @property
+    def reduction(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per element, 1 - the factor of the friction against the operation's motion.
+        """
+    @property
+    def surface_torque_change(self) -> float:
+        """
+        [N m]
+        """
+    @property
+    def vibrated(self) -> TorqueDragResult:
+        """
+        TorqueDragResult with them (a copy).
+        """
+    @property
+    def vibration_amplitude(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per element, the tools' axial velocity amplitude [m/s].
+        """
+    @property
+    def zone_bottom(self) -> float:
+        """
+        Bottom of the zone of influence [m MD].
+        """
+    @property
+    def zone_length(self) -> float:
+        """
+        Length of the elements reduced past zone_threshold [m] (0: no zone).
+        """
+    @property
+    def zone_top(self) -> float:
+        """
+        Top of the zone of influence [m MD].
+        """
 class SoftString:
     """
     Soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380) of a DrillString hung from measured
@@ -2278,9 +2380,19 @@ class SoftString:
         """
         The wall contact force at each node [N] for an effective tension per node (N + 1 values, surface first): each element's side force under the mean of its end tensions, half to each of its nodes.
         """
+    def oscillators(self, operation: str, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) -> OscillatorDragResult:
+        """
+        One operation with and without axial vibration tools: each tool's wave attenuated by the wall friction it produces, the friction reduced element by element, coupled with the side forces until it settles.
+        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).
+        """
     def run(self, operation: str, *, mud_density: float = 1200, cased_hole_friction: float = 0.25, open_hole_friction: float = 0.3, casing_shoe_depth: float = 0, casing_inner_diameter: float = 0.2205, hole_diameter: float = 0.2159, trip_speed: float = 0.3, rate_of_penetration: float = 0.00833333333333, rotary_speed: float = 12.5663706144, weight_on_bit: float = 0, bit_torque: float = 0) -> TorqueDragResult:
         """
         Torque and drag of one operation (one of SoftString.operations) under the conditions given by keyword (the others keep their defaults; see SoftString.parameters).
+        """
+    def sliding_weight_on_bit(self, hook_load: float, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) -> float:
+        """
+        The weight on bit [N] transferred while sliding at the hook load [N] with the tools (an empty list: without): the placement objective.
+        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).
         """
     @property
     def element_length(self) -> float:

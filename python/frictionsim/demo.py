@@ -28,6 +28,14 @@
    (:func:`frictionsim.drillstring.stick_slip_map`, 60 s from rest per point, measured after 30 s:
    ``stick_slip_map.csv`` and ``.png``) and, at one stick-slip point, bit and surface speed and torque over time
    (``time_series.csv``, ``speeds.png``).
+7. A horizontal well (issue 14), into ``<out>/horizontal_well/``: the example survey with a 3 km lateral
+   (examples/surveys/horizontal_3km.csv), 4700 m of 5" pipe over 150 m of 6 1/2" collars, soft-string torque and
+   drag: the broomstick over friction factors 0.15-0.35 with, beside tripping, the string slid in at the drilling
+   rate (no weight on bit) without and with a 60 kN hydraulic oscillator 300 m above the bit (at trip speed the
+   tool's ~0.2 m/s vibration does not reverse the sliding, so it changes nothing there: ``broomstick.csv``,
+   ``broomstick.png``), and the tool's placement while sliding at the hook load that puts 20 kN on the bit without
+   it (:func:`frictionsim.wells.place_oscillators`: ``placement.csv``,
+   ``placement.png``).
 
 Scenario choices follow examples/axial_rig_demo.cpp (the C++ demo): m = 0.2 kg, k_d = 2e4 N/m, mu = 0.41 (dry) and
 0.27 (OBM), Dahl k_t = 40 N/mm (Fig. 10), 2 s with the mean over the last 10 cycles; sweep ratios 0.05-1.5,
@@ -51,8 +59,8 @@ from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_com
 from .scenario import Scenario, ScenarioRun, loads, run
 from .torsional import FIG7 as PAPER001_FIG7
 
-__all__ = ["BUILTIN_SCENARIOS", "Demo", "FieldString", "Paper001", "builtin_scenario", "compute", "field_rig",
-           "field_string", "format_table", "paper001", "table5_refit"]
+__all__ = ["BUILTIN_SCENARIOS", "Demo", "FieldString", "HorizontalWell", "Paper001", "builtin_scenario", "compute",
+           "field_rig", "field_string", "format_table", "horizontal_well", "paper001", "table5_refit"]
 
 #: The built-in scenarios: package data (python/frictionsim/scenarios/), linked from examples/scenarios/.
 BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm", "fig7_torsional")
@@ -376,6 +384,103 @@ def field_string(quick: bool = False) -> FieldString:
     return FieldString(rig, result, measures, grid, time.perf_counter() - start)
 
 
+#: The horizontal well's case: friction factors of the broomstick, the tool (force amplitude [N], height above
+#: the bit [m]), the weight on bit the plain string slides with [N].
+WELL_FRICTION_FACTORS = (0.15, 0.25, 0.35)
+WELL_TOOL_FORCE, WELL_TOOL_ABOVE_BIT, WELL_SLIDING_WOB = 60e3, 300.0, 20e3
+
+
+@dataclass
+class HorizontalWell:
+    """The horizontal well's torque and drag with and without a hydraulic oscillator, and its placement."""
+
+    chart: "object"  #: frictionsim.wells.Broomstick without the tool
+    with_tool: "object"  #: pandas DataFrame: bit_depth, friction_factor, hook_load_plain / hook_load_tool sliding in
+    placement: "object"  #: frictionsim.wells.Placement
+    string_length: float
+
+    def report(self, quick: bool) -> List[str]:
+        p = self.placement
+        deepest = self.with_tool[self.with_tool["bit_depth"] == self.with_tool["bit_depth"].max()]
+        rows = []
+        for mu in WELL_FRICTION_FACTORS:
+            _, trip = self.chart.hook_loads("trip_in", mu)
+            row = deepest[deepest["friction_factor"] == mu].iloc[0]
+            rows.append(f"   mu = {mu:g}: tripping in {trip[-1] / 1e3:8.1f} kN; sliding in {row['hook_load_plain'] / 1e3:8.1f} "
+                        f"kN, with the tool {row['hook_load_tool'] / 1e3:8.1f} kN")
+        return [
+            f"horizontal well (issue 14): examples/surveys/horizontal_3km.csv, {self.string_length:g} m string, "
+            f"soft-string torque and drag; a {WELL_TOOL_FORCE / 1e3:g} kN hydraulic oscillator "
+            f"{WELL_TOOL_ABOVE_BIT:g} m above the bit",
+            "9. Hook load at TD (broomstick, open and cased hole at the same factor; sliding: at the drilling rate, "
+            "no weight on bit):",
+            *rows,
+            f"10. Placement while sliding at {p.hook_load / 1e3:.1f} kN hook load ({WELL_SLIDING_WOB / 1e3:g} kN on "
+            f"the bit without a tool): best at {p.depths[0]:.0f} m MD ({self.string_length - p.depths[0]:.0f} m above "
+            f"the bit), {p.weight_on_bit / 1e3:.1f} kN on the bit ({p.evaluations} evaluations of the C++ objective)",
+        ]
+
+    def write(self, directory: Path) -> List[Path]:
+        """Write horizontal_well/: broomstick.csv/.png, placement.csv/.png."""
+        import pandas as pd
+
+        from . import plots
+
+        directory.mkdir(parents=True)
+        written = [directory / "broomstick.csv", directory / "placement.csv"]
+        frame = self.chart.frame.assign(tool=False)
+        sliding = [self.with_tool.rename(columns={f"hook_load_{k}": "hook_load"})
+                   .drop(columns=[f"hook_load_{'tool' if k == 'plain' else 'plain'}"])
+                   .assign(operation="sliding_drilling", surface_torque=np.nan, tool=k == "tool")
+                   for k in ("plain", "tool")]
+        pd.concat([frame, *sliding], ignore_index=True).to_csv(written[0], index=False, float_format="%.10g")
+        pd.DataFrame({"tool_depth": self.placement.scan_depths,
+                      "weight_on_bit": self.placement.scan_weight_on_bit}).to_csv(written[1], index=False,
+                                                                                 float_format="%.10g")
+        ax = plots.broomstick_axes(self.chart, title="horizontal well, 3 km lateral")
+        for k, mu in enumerate(WELL_FRICTION_FACTORS):
+            rows = self.with_tool[self.with_tool["friction_factor"] == mu]
+            # sliding in without the tool is the slack-off line (Coulomb friction does not depend on the speed)
+            ax.plot(rows["hook_load_tool"] / 1e3, rows["bit_depth"], color="darkorange", linewidth=1.2,
+                    linestyle=["-", "--", "-."][k % 3], label=f"sliding in with the oscillator, mu = {mu:g}")
+        ax.legend(fontsize=7, loc="upper right")
+        written.append(plots.save(ax.figure, directory / "broomstick.png"))
+        written.append(plots.save(plots.placement_axes(self.placement, title="hydraulic oscillator placement").figure,
+                                  directory / "placement.png"))
+        return written
+
+
+def horizontal_well(quick: bool = False) -> HorizontalWell:
+    """The horizontal well's part of the demo (writes nothing)."""
+    from . import wells
+    from ._core import DrillString, HydraulicOscillator, PipeSection
+
+    survey = wells.read_survey(resources.files("frictionsim").joinpath("data", "horizontal_3km.csv"))
+    string = DrillString([PipeSection(length=4700.0),
+                          PipeSection(outer_diameter=0.1651, inner_diameter=0.0714, length=150.0)])
+    step = 150.0 if quick else 50.0
+    chart = wells.broomstick(survey, string, WELL_FRICTION_FACTORS, depth_step=step)
+    rows = []
+    for depth in sorted(set(chart.frame["bit_depth"])):
+        if depth <= WELL_TOOL_ABOVE_BIT:
+            continue
+        model = wells.soft_string(survey, wells.string_to_depth(string, depth))
+        tool = HydraulicOscillator(measured_depth=depth - WELL_TOOL_ABOVE_BIT, force_amplitude=WELL_TOOL_FORCE)
+        for mu in WELL_FRICTION_FACTORS:
+            r = model.oscillators("sliding_drilling", tool, weight_on_bit=0.0, open_hole_friction=mu,
+                                  cased_hole_friction=mu)
+            rows.append({"bit_depth": depth, "friction_factor": mu, "hook_load_plain": r.plain.hook_load,
+                         "hook_load_tool": r.vibrated.hook_load})
+    import pandas as pd
+
+    model = wells.soft_string(survey, string)
+    mu = dict(open_hole_friction=0.25, cased_hole_friction=0.25)
+    hook_load = model.run("sliding_drilling", weight_on_bit=WELL_SLIDING_WOB, **mu).hook_load
+    placement = wells.place_oscillators(model, hook_load, force_amplitude=WELL_TOOL_FORCE,
+                                        scan_points=20 if quick else 60, **mu)
+    return HorizontalWell(chart, pd.DataFrame(rows), placement, string.length)
+
+
 @dataclass
 class Demo:
     """Everything the demo computed; :meth:`report` is what it prints, :meth:`write` what it writes."""
@@ -386,6 +491,7 @@ class Demo:
     refit: "object"  #: pandas DataFrame (table5_refit.csv)
     paper001: Paper001
     field: FieldString
+    well: HorizontalWell
     quick: bool
     elapsed: float  #: s of simulation and fitting
 
@@ -416,6 +522,8 @@ class Demo:
             "",
             *self.field.report(self.quick),
             "",
+            *self.well.report(self.quick),
+            "",
             f"simulated and fitted in {self.elapsed:.2f} s",
         ]
         return "\n".join(lines)
@@ -443,6 +551,7 @@ class Demo:
         written.append(write_fig11(directory))
         written += self.paper001.write(directory / "paper001")
         written += self.field.write(directory / "field_string")
+        written += self.well.write(directory / "horizontal_well")
         return written
 
 
@@ -468,4 +577,5 @@ def compute(quick: bool = False) -> Demo:
     refit = table5_refit()
     torsional = paper001(quick)
     field = field_string(quick)
-    return Demo(fig7, reduction, sweep, refit, torsional, field, quick, time.perf_counter() - start)
+    well = horizontal_well(quick)
+    return Demo(fig7, reduction, sweep, refit, torsional, field, well, quick, time.perf_counter() - start)

@@ -384,6 +384,25 @@ def broomstick_figure(chart, *, title: str = ""):
     return broomstick_axes(chart, title=title).figure
 
 
+def placement_axes(placement, ax=None, *, title: str = ""):
+    """A :class:`frictionsim.wells.Placement`: the weight on bit [kN] while sliding against the tool's measured
+    depth [m], without any tool as a dashed line, the best depth(s) marked. Returns the Axes."""
+    ax = _axes(ax, 7.0, 4.0)
+    label = "one tool at this depth" if len(placement.depths) == 1 else "second tool (first at its best)"
+    ax.plot(placement.scan_depths, np.asarray(placement.scan_weight_on_bit) / 1e3, label=label)
+    ax.axhline(placement.weight_on_bit_without / 1e3, color="grey", linestyle="--", label="no tool")
+    for d in placement.depths:
+        ax.axvline(d, color="tab:red", linestyle=":")
+    ax.plot(placement.depths, [placement.weight_on_bit / 1e3] * len(placement.depths), "o", color="tab:red",
+            label=f"best: {placement.weight_on_bit / 1e3:.1f} kN")
+    ax.set_xlabel("tool measured depth [m]")
+    ax.set_ylabel("weight on bit while sliding [kN]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    ax.set_title(_titled(title, f"sliding at a hook load of {placement.hook_load / 1e3:.0f} kN"), fontsize=10)
+    return ax
+
+
 def well_path_axes(survey, ax=None, *, view: str = "section", title: str = ""):
     """A :class:`frictionsim.Survey`'s minimum-curvature path, drawn through interpolated points (arcs between
     stations, not chords) with the stations marked: ``view="section"`` true vertical depth [m] (down) against

@@ -28,13 +28,16 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ._core import DrillString, PipeSection, SoftString, Survey, TorqueDragResult
+from ._core import DrillString, HydraulicOscillator, OscillatorDragResult, PipeSection, SoftString, Survey, TorqueDragResult
 from .errors import InvalidParameterError
 
 __all__ = [
     "BROOMSTICK_OPERATIONS",
     "Broomstick",
     "DrillString",
+    "HydraulicOscillator",
+    "OscillatorDragResult",
+    "Placement",
     "OPERATIONS",
     "PipeSection",
     "SoftString",
@@ -42,6 +45,8 @@ __all__ = [
     "TorqueDragResult",
     "broomstick",
     "node_table",
+    "place_oscillators",
+    "plot_placement",
     "plot_broomstick",
     "plot_well_path",
     "read_survey",
@@ -348,3 +353,88 @@ def plot_well_path(survey: Survey, ax=None, *, view: str = "section", title: str
     from .plots import well_path_axes
 
     return well_path_axes(survey, ax=ax, view=view, title=title)
+
+
+# ------------------------------------------------------------------------------------- axial vibration tools
+@dataclass(frozen=True)
+class Placement:
+    """Where to put one or two axial vibration tools: the weight on bit transferred while sliding at a hook load.
+
+    ``depths``: the best tool depths [m MD]; ``weight_on_bit`` there and ``weight_on_bit_without`` with no tool
+    [N]; ``scan_depths`` / ``scan_weight_on_bit``: the objective against one tool's depth (for two tools: the
+    second tool's depth with the first at its best), the curve of :func:`plot_placement`; ``evaluations``: calls of
+    the C++ objective."""
+
+    depths: Tuple[float, ...]
+    weight_on_bit: float
+    weight_on_bit_without: float
+    hook_load: float
+    scan_depths: np.ndarray
+    scan_weight_on_bit: np.ndarray
+    evaluations: int
+
+    @property
+    def gain(self) -> float:
+        """Weight on bit the tools add [N]."""
+        return self.weight_on_bit - self.weight_on_bit_without
+
+
+def place_oscillators(model: SoftString, hook_load: float, *, tools: int = 1, force_amplitude: float = 50e3,
+                      frequency: float = 18.0, bounds: Optional[Tuple[float, float]] = None, scan_points: int = 60,
+                      **keywords) -> Placement:
+    """The tool depth(s) that maximise the weight on bit transferred while sliding at ``hook_load`` [N]
+    (issue 14, item 4): the C++ objective ``SoftString.sliding_weight_on_bit`` scanned over ``scan_points``
+    depths within ``bounds`` [m MD] (default: the string's lowest 95 %, above the bit), then refined with
+    ``scipy.optimize``: bounded ``minimize_scalar`` for one tool, Nelder-Mead from the best pair of the scan for
+    two (the objective has plateaus and kinks near the bit, so a gradient method would stall). ``keywords``: the
+    conditions of ``SoftString.parameters`` and the estimate's settings of ``SoftString.oscillators``
+    (``bit_reflection``, ``model``, ``lubricant``, ...)."""
+    from scipy.optimize import minimize, minimize_scalar
+
+    if isinstance(tools, bool) or tools not in (1, 2):
+        raise InvalidParameterError(f"tools must be 1 or 2 (got {tools!r})", "tools")
+    if isinstance(scan_points, bool) or not isinstance(scan_points, int) or scan_points < 3:
+        raise InvalidParameterError(f"scan_points must be an integer >= 3 (got {scan_points!r})", "scan_points")
+    length = float(model.node_depths[-1])
+    low, high = bounds if bounds is not None else (0.05 * length, length - model.element_length)
+    if not (math.isfinite(low) and math.isfinite(high) and 0.0 <= low < high <= length):
+        raise InvalidParameterError(f"bounds must satisfy 0 <= low < high <= the string's length {length:g} m "
+                                    f"(got {bounds!r})", "bounds")
+    calls = 0
+
+    def objective(*depths: float) -> float:
+        nonlocal calls
+        calls += 1
+        placed = [HydraulicOscillator(measured_depth=float(min(max(d, low), high)), force_amplitude=force_amplitude,
+                                      frequency=frequency) for d in depths]
+        return model.sliding_weight_on_bit(hook_load, placed, **keywords)
+
+    without = model.sliding_weight_on_bit(hook_load, [], **keywords)
+    grid = np.linspace(low, high, scan_points)
+    single = np.array([objective(d) for d in grid])
+    k = int(np.argmax(single))
+    if tools == 1:
+        a, b = grid[max(k - 1, 0)], grid[min(k + 1, len(grid) - 1)]
+        refined = minimize_scalar(lambda d: -objective(d), bounds=(a, b), method="bounded",
+                                  options={"xatol": 1e-3 * (high - low) / scan_points})
+        best = (float(refined.x), -float(refined.fun)) if -refined.fun > single[k] else (float(grid[k]), single[k])
+        return Placement((best[0],), float(best[1]), without, hook_load, grid, single, calls)
+    # two tools: the best pair on a coarse grid (first above second), then Nelder-Mead within the bounds
+    coarse = grid[:: max(1, scan_points // 15)]
+    pairs = [(u, v) for i, u in enumerate(coarse) for v in coarse[i + 1:]]
+    values = [objective(u, v) for u, v in pairs]
+    start = np.array(pairs[int(np.argmax(values))])
+    refined = minimize(lambda x: -objective(*x), start, method="Nelder-Mead", bounds=[(low, high), (low, high)],
+                       options={"xatol": 1e-3 * (high - low) / scan_points, "fatol": 1e-6 * max(abs(without), 1.0)})
+    pair, value = (refined.x, -refined.fun) if -refined.fun > max(values) else (start, max(values))
+    depths = tuple(sorted(float(d) for d in pair))
+    curve = np.array([objective(depths[0], d) for d in grid])
+    return Placement(depths, float(value), without, hook_load, grid, curve, calls)
+
+
+def plot_placement(placement: Placement, ax=None, *, title: str = ""):
+    """The weight on bit [kN] against the tool's depth [m MD], without any tool as a line, the best depth(s)
+    marked; returns the Axes (a new figure's when ``ax`` is None)."""
+    from .plots import placement_axes
+
+    return placement_axes(placement, ax=ax, title=title)

@@ -2,6 +2,7 @@
 
 import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -300,9 +301,25 @@ def test_demo_quick(tmp_path, capsys):
     sweep = pd.read_csv(out / "friction_reduction.csv")
     assert sweep["kinematic_coulomb"].to_numpy() == pytest.approx(sweep["coulomb_closed_form"].to_numpy(),
                                                                   abs=1e-6)
+    # the horizontal well: sliding in without the tool is the slack-off (Coulomb: speed-independent), the tool only
+    # adds hook load (it takes drag away), and the placement is the best point of its curve
+    well = pd.read_csv(out / "horizontal_well" / "broomstick.csv")
+    trip = well[(well["operation"] == "trip_in") & ~well["tool"]].set_index(["bit_depth", "friction_factor"])
+    for with_tool in (False, True):
+        sliding = well[(well["operation"] == "sliding_drilling") & (well["tool"] == with_tool)]
+        reference = trip.loc[list(zip(sliding["bit_depth"], sliding["friction_factor"])), "hook_load"].to_numpy()
+        if with_tool:
+            assert np.all(sliding["hook_load"].to_numpy() >= reference - 1e-6)
+            assert np.any(sliding["hook_load"].to_numpy() > reference + 1e3)
+        else:
+            assert sliding["hook_load"].to_numpy() == pytest.approx(reference, rel=1e-12, abs=1e-6)
+    placement = pd.read_csv(out / "horizontal_well" / "placement.csv")
+    assert (out / "horizontal_well" / "placement.png").exists() and (out / "horizontal_well" / "broomstick.png").exists()
     stdout = capsys.readouterr().out
+    best = float(re.search(r"the bit\), ([0-9.]+) kN on the bit", stdout).group(1))
+    assert best * 1e3 >= placement["weight_on_bit"].max() - 100.0  # printed to 0.1 kN
     for text in ("Fig. 7 cases", "VS3", "VS17", "Table 5 refit", "-0.36513", "Coulomb exact", "paper 001",
-                 "Stick-slip map"):
+                 "Stick-slip map", "horizontal well", "Placement while sliding"):
         assert text in stdout
 
 
