@@ -937,3 +937,49 @@ TEST_CASE("string rig: a drive that cannot supply the Detournay bit's torque lea
     CHECK(rig.bit_torque(40.0, x, mode) == Approx(p.torque_limit).epsilon(1e-6));
     CHECK(mode[rig.bit_slot()] == stick);
 }
+
+TEST_CASE("string rig: wall contacts without normal force (a vertical hole) are inert: no events, the run of no walls",
+          "[string_rig]") {
+    // A vertical string: every node's normal force w_b sin 0 is zero, so its Coulomb contact has no static limit and
+    // no jump at zero speed. It must slide through each reversal without an event (before, every unloaded node's
+    // reversal was a switch, and a grazing one chattered), giving exactly the run without wall contacts.
+    const auto make = [](bool walls) {
+        StringRigParams p;
+        p.inclination = 0.0;
+        p.damping_time = 2e-3;
+        p.end_inertia = 40.0;
+        p.end_mass = 20e3;
+        p.surface_speed = 4.0;
+        p.top_drive_inertia = 300.0;
+        p.proportional_gain = 3e3;
+        p.integral_gain = 1e3;
+        StringRigSetup s;
+        s.elements = 20;
+        s.wall_contacts = walls;
+        NavarroLopezBit::Params b;
+        b.viscous_damping = 0.0;
+        return StringRig<Coulomb, VelocityWeakeningBit>(pipe_string(2000.0), p, s, Coulomb(0.2, 0.3),
+                                                        VelocityWeakeningBit(NavarroLopezBit(b), 6e4));
+    };
+    const auto walls = make(true), none = make(false);
+    REQUIRE(walls.contact_nodes().size() == 19);  // nodes 1..N-1: node N carries the bit
+    for (double f : walls.normal_forces()) CHECK(f == 0.0);
+    SolverOptions o;
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    o.output_times = grid(20.0, 0.05);
+    const Result a = simulate(walls, 20.0, o), b = simulate(none, 20.0, o);
+    std::size_t wall_events = 0, bit_sticks = 0;
+    for (const Event& e : a.events) {
+        if (e.name.rfind("node_", 0) == 0) ++wall_events;
+        if (e.mode_after_name == std::string("bit_stick")) ++bit_sticks;
+    }
+    CHECK(wall_events == 0);
+    CHECK(bit_sticks >= 4);  // the bit sticks and slips: the nodes reverse, and the walls still make no event
+    CHECK(a.events.size() == b.events.size());
+    const std::size_t bit_speed = a.column("omega_20");
+    double worst = 0.0;
+    for (std::size_t row = 0; row < a.rows(); ++row)
+        worst = std::max(worst, std::abs(a.state(row, bit_speed) - b.state(row, b.column("omega_20"))));
+    CHECK(worst < 1e-8);
+}

@@ -21,6 +21,8 @@
 //    where neither is (N0 <= S' <= P0), BranchGap decides.
 #pragma once
 
+#include <algorithm>
+
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -63,7 +65,16 @@ public:
     static constexpr std::array<int, 3> modes{slip_negative, stick, slip_positive};
 
     DiscContact(Law law, double contact_radius, double normal_force)
-        : law_(std::move(law)), radius_(contact_radius), normal_force_(normal_force) {}
+        : law_(std::move(law)), radius_(contact_radius), normal_force_(normal_force) {
+        if constexpr (Switching::set_valued)  // no normal force, no jump: nothing to stick or switch
+            inert_ = law_.static_limit(normal_force_) == 0.0 &&
+                     law_.slip_force(0.0, normal_force_, +1) == law_.slip_force(0.0, normal_force_, -1);
+    }
+
+    /// A set-valued law under a normal force that leaves it no static limit and no jump at zero speed (N = 0 on a
+    /// vertical stretch of a string): the contact slides through zero speed without switching (its guards stay
+    /// positive), instead of an event at every reversal of an unloaded node.
+    bool inert() const { return inert_; }
 
     const Law& law() const { return law_; }
 
@@ -95,12 +106,17 @@ public:
         return d;
     }
     void guards(double w, double shaft_torque, const double*, int mode, double, double* g) const {
+        if (inert_) {
+            std::fill(g, g + guard_count, 1.0);
+            return;
+        }
         Switching::guards(law_, radius_ * w, normal_force_, mode, shaft_torque / radius_, g);
     }
     int guard_direction(std::size_t i, int mode) const { return Switching::guard_direction(i, mode); }
     const char* guard_name(std::size_t i, int mode) const { return Switching::guard_name(law_, i, mode); }
     const char* mode_name(int mode) const { return Switching::mode_name(law_, mode); }
     int initial_mode(double w, double shaft_torque, const double* z, double) const {
+        if (inert_) return w < 0.0 ? int{slip_negative} : int{slip_positive};  // the force is the same either way
         return Switching::initial_mode(law_, radius_ * w, normal_force_, z, shaft_torque / radius_);
     }
     /// New mode at a root; projects w to exactly zero on entering stick.
@@ -115,6 +131,7 @@ public:
 private:
     Law law_;
     double radius_, normal_force_;
+    bool inert_ = false;
 };
 
 template <>
