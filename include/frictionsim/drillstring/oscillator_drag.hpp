@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "../detail/illinois.hpp"
 #include "../detail/validate.hpp"
 #include "../error.hpp"
 #include "../friction/power_law.hpp"
@@ -170,26 +171,15 @@ public:
             hi *= 2.0;
             r_hi = residual(hi);
         }
-        // Illinois: regula falsi, halving the retained end's residual when one end is kept twice
-        int side = 0;
+        detail::IllinoisBracket b{lo, r_lo, hi, r_hi};
         for (int k = 0; k < 200; ++k) {
-            const double wob = (lo * r_hi - hi * r_lo) / (r_hi - r_lo);
+            const double wob = b.next();
             const double r = residual(wob);
-            if (r == 0.0 || hi - lo <= 1e-12 * hi) return wob;
-            if (r > 0.0) {
-                lo = wob;
-                r_lo = r;
-                if (side == 1) r_hi *= 0.5;
-                side = 1;
-            } else {
-                hi = wob;
-                r_hi = r;
-                if (side == -1) r_lo *= 0.5;
-                side = -1;
-            }
+            if (r == 0.0 || b.b - b.a <= 1e-12 * b.b) return wob;
+            b.move(wob, r, !(r > 0.0));
             if (std::abs(r) <= 1e-10 * std::max(std::abs(hook_load), 1.0)) return wob;
         }
-        return 0.5 * (lo + hi);
+        return 0.5 * (b.a + b.b);
     }
 
 private:

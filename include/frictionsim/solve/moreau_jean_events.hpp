@@ -43,6 +43,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "../detail/illinois.hpp"
 #include "../detail/validate.hpp"
 #include "../error.hpp"
 #include "moreau_jean.hpp"
@@ -396,8 +397,8 @@ private:
             main_ = make(opt_.steps.step, false, t_, q_, v_);
             return;
         }
-        int side = 0;  // Illinois: the end kept twice in a row has its value halved
-        for (int iter = 0; b - a > opt_.time_tolerance; ++iter) {
+        detail::IllinoisBracket r{a, ga, b, gb};
+        for (int iter = 0; r.b - r.a > opt_.time_tolerance; ++iter) {
             if (iter >= opt_.max_location_iterations) {
                 std::ostringstream msg;
                 msg.precision(17);
@@ -405,23 +406,13 @@ private:
                     << " s not located within max_location_iterations";
                 throw SimulationError(msg.str(), t_);
             }
-            double x = ga - gb != 0.0 ? b - gb * (b - a) / (gb - ga) : 0.5 * (a + b);
-            const double margin = 0.01 * (b - a);
-            if (!(x > a + margin && x < b - margin)) x = 0.5 * (a + b);  // the secant left the bracket: bisect
+            // the secant point; where it leaves the inner 98 % of the bracket (or ga is still infinite), bisect
+            const double x = r.ga - r.gb != 0.0 ? r.next(0.01 * (r.b - r.a)) : 0.5 * (r.a + r.b);
             const double gx = trial(x, probe);
-            if (gx <= 0.0) {
-                b = x;
-                gb = gx;
-                std::swap(best, probe);
-                if (side == 1) ga *= 0.5;
-                side = 1;
-            } else {
-                a = x;
-                ga = gx;
-                if (side == -1) gb *= 0.5;
-                side = -1;
-            }
+            if (gx <= 0.0) std::swap(best, probe);
+            r.move(x, gx, gx <= 0.0);
         }
+        b = r.b;
         const MoreauJean& mj = *best.mj;
         add(stats_.steps, mj.statistics());
         Eigen::VectorXd v = mj.velocities();

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "../detail/illinois.hpp"
 #include "hybrid_system.hpp"
 #include "system_size.hpp"
 
@@ -121,25 +122,13 @@ private:
     double bracket(std::size_t i, const Mode& mode, double lo, double hi, double g_lo, double g_hi, double tol,
                    GuardsAt& at) {
         const int dir = sys_.guard_direction(i, mode);
-        int side = 0;
-        for (int iter = 0; iter < 200 && hi - lo > tol; ++iter) {
-            double tm = hi - g_hi * (hi - lo) / (g_hi - g_lo);
-            if (!(tm > lo + 0.5 * tol && tm < hi - 0.5 * tol)) tm = 0.5 * (lo + hi);
+        IllinoisBracket r{lo, g_lo, hi, g_hi};
+        for (int iter = 0; iter < 200 && r.b - r.a > tol; ++iter) {
+            const double tm = r.next(0.5 * tol);
             at(tm, g_scratch_);
-            const double gm = g_scratch_[i];
-            if (crossing(reference_[i], gm, dir) != 0) {
-                hi = tm;
-                g_hi = gm;
-                if (side == 1) g_lo *= 0.5;  // Illinois: halve the stale end
-                side = 1;
-            } else {
-                lo = tm;
-                g_lo = gm;
-                if (side == -1) g_hi *= 0.5;
-                side = -1;
-            }
+            r.move(tm, g_scratch_[i], crossing(reference_[i], g_scratch_[i], dir) != 0);
         }
-        return hi;
+        return r.b;
     }
     const System& sys_;
     std::size_t count_;

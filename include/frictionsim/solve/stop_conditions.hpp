@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../detail/illinois.hpp"
 #include "../detail/validate.hpp"
 #include "hybrid_system.hpp"
 #include "system_size.hpp"
@@ -124,24 +125,14 @@ private:
     template <class G>
     static double locate(const G& g, double a, double ga, double b, double gb) {
         if (gb == 0.0) return b;
-        int side = 0;
-        for (int it = 0; it < 100 && b - a > 4.0 * 2.220446049250313e-16 * std::max(1.0, std::abs(b)); ++it) {
-            const double c = b - gb * (b - a) / (gb - ga);
+        IllinoisBracket r{a, ga, b, gb};
+        for (int it = 0; it < 100 && r.b - r.a > 4.0 * 2.220446049250313e-16 * std::max(1.0, std::abs(r.b)); ++it) {
+            const double c = r.next();
             const double gc = g(c);
             if (gc == 0.0) return c;
-            if ((gc > 0.0) == (gb > 0.0)) {
-                b = c;
-                gb = gc;
-                if (side == -1) ga *= 0.5;
-                side = -1;
-            } else {
-                a = c;
-                ga = gc;
-                if (side == +1) gb *= 0.5;
-                side = +1;
-            }
+            r.move(c, gc, (gc > 0.0) == (r.gb > 0.0));
         }
-        return b;  // the side past the crossing: the condition holds there
+        return r.b;  // the side past the crossing: the condition holds there
     }
 
     std::vector<StopCondition> conditions_;
