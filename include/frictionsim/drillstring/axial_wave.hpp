@@ -144,22 +144,7 @@ public:
             }
         }
         const double at_bit = a;
-        // upward from the tool: elements whose middle is above x_t
-        a = source;
-        x = x_t;
-        if (x_t > 0.0) {
-            for (std::size_t e = above + 1; e-- > 0;) {
-                if (e != above) a *= transmission(e + 1, e);
-                const double mid = mid_depth(e);
-                if (mid < x) {
-                    a = step(a, x - mid, e, medium);
-                    out[e] = a;
-                    x = mid;
-                }
-                a = step(a, x - node_[e], e, medium);
-                x = node_[e];
-            }
-        }
+        up_from_tool(source, x_t, above, medium, out);  // elements whose middle is above x_t
         if (bit_reflection == 0.0 || at_bit == 0.0) return;
         standing_wave(tool, medium, bit_reflection, below, above, source, out);
     }
@@ -337,19 +322,24 @@ private:
         // above the tool: the direct upward wave and the reflected one are one wave from there on
         const double merged =
             std::sqrt(std::max(source * source + ar[0] * ar[0] + 2.0 * sign * source * ar[0] * std::cos(g.phase[0]), 0.0));
-        double a = merged, x = x_t;
-        if (x_t > 0.0) {
-            for (std::size_t e = above + 1; e-- > 0;) {
-                if (e != above) a *= transmission(e + 1, e);
-                const double mid = mid_depth(e);
-                if (mid < x) {
-                    a = step(a, x - mid, e, m);
-                    out[e] = a;
-                    x = mid;
-                }
-                a = step(a, x - node_[e], e, m);
-                x = node_[e];
+        up_from_tool(merged, x_t, above, m, out);
+    }
+
+    /// A wave of amplitude a leaving the tool at x_t upwards through element `above` and the ones over it: its
+    /// amplitude at each element's middle above x_t into out, attenuated and transmitted on the way.
+    void up_from_tool(double a, double x_t, std::size_t above, const Medium& medium, std::vector<double>& out) const {
+        if (!(x_t > 0.0)) return;
+        double x = x_t;
+        for (std::size_t e = above + 1; e-- > 0;) {
+            if (e != above) a *= transmission(e + 1, e);
+            const double mid = mid_depth(e);
+            if (mid < x) {
+                a = step(a, x - mid, e, medium);
+                out[e] = a;
+                x = mid;
             }
+            a = step(a, x - node_[e], e, medium);
+            x = node_[e];
         }
     }
 
