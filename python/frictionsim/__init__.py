@@ -85,7 +85,7 @@ def __getattr__(name: str):
     # Submodules with heavier imports (pandas, scipy, matplotlib, PyEMD, dask) load on first use: fs.fit, ...
     import importlib
 
-    if name in ("axial", "cli", "contact", "data", "demo", "drillstring", "fit", "plots", "scenario", "signal",
-                "torsional", "wells"):
+    if name in ("axial", "cli", "contact", "data", "demo", "drillstring", "fit", "io", "plots", "provenance",
+                "scenario", "signal", "torsional", "wells"):
         return importlib.import_module(f".{name}", __name__)
     raise AttributeError(f"module 'frictionsim' has no attribute {name!r}")

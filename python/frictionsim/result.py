@@ -6,7 +6,7 @@ Everything is copied once out of the C++ engine, so a Result pickles (process po
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
-from typing import Dict, Iterator, List, Optional
+from typing import Any, Dict, Iterator, List, Optional
 
 import numpy as np
 
@@ -83,6 +83,9 @@ class Result:
     t_reached : float, s
     period : float or None, s
         The rig's vibration period, the default of :meth:`mean_over_cycles`.
+    metadata : dict
+        Provenance of the run (:func:`frictionsim.provenance.collect`): version, rig and law ``repr``, solver
+        options and stats, time, platform; the ``attrs`` of :meth:`to_netcdf`.
     """
 
     def __init__(self, raw: "_core.RawResult", period: Optional[float] = None) -> None:
@@ -107,6 +110,11 @@ class Result:
         self.warnings: List[str] = list(raw.warnings)
         self.t_reached: float = float(raw.t_reached)
         self.period: Optional[float] = period
+        # (rig, options, POSIX time, stop conditions) of the run, set by simulate(); the provenance record is made
+        # from them on first use (tens of microseconds: too dear for every run of a sweep). Rigs are immutable, so
+        # the record made later is the run's.
+        self._run: Optional[tuple] = None
+        self._metadata: Optional[Dict[str, Any]] = None
         for array in (self.t, self.states, self.friction_force, self.mode):
             array.setflags(write=False)  # shared views: a caller's edit must not corrupt the result
 
@@ -130,7 +138,59 @@ class Result:
         state["_event_log"] = None
         state["_stop_events"] = self.stop_events
         state["_stop_log"] = None
+        state["_metadata"] = self.metadata  # the rig need not pickle (a CallableLaw's function): its record does
+        state["_run"] = None
         return state
+
+    def __setstate__(self, state: dict) -> None:
+        state.setdefault("_run", None)  # a Result pickled before provenance existed
+        state.setdefault("_metadata", None)
+        self.__dict__.update(state)
+
+    # ------------------------------------------------------------------ provenance and labelled outputs
+    @property
+    def metadata(self) -> Dict[str, Any]:
+        """The provenance record of the run (:func:`frictionsim.provenance.collect`), JSON-safe; its
+        ``created_utc`` is when the run started (``error.partial`` of a failed run records it too; a Result made
+        otherwise records no rig or options)."""
+        if self._metadata is None:
+            from . import provenance
+
+            rig, options, started, conditions = self._run if self._run is not None else (None, None, None, ())
+            if options is not None:  # the conditions as given: SolverOptions.stop_conditions does not read back
+                options = dict(provenance.solver_options_record(options),
+                               stop_conditions=[repr(condition) for condition in conditions])
+            record = provenance.collect(rigs=() if rig is None else [rig], solver_options=options, stats=self.stats)
+            if started is not None:
+                record["created_utc"] = provenance.utc_time(started)
+            self._metadata = record
+        return self._metadata
+
+    @metadata.setter
+    def metadata(self, record: Dict[str, Any]) -> None:
+        self._metadata = dict(record)
+
+    def to_xarray(self):
+        """The result as an :class:`xarray.Dataset` over ``time`` [s] with units, the event log over ``event`` and
+        the provenance in ``attrs`` (:func:`frictionsim.io.result_dataset`). Needs ``frictionsim[io]``."""
+        from .io import result_dataset
+
+        return result_dataset(self)
+
+    def to_netcdf(self, path, *, engine: Optional[str] = None):
+        """Write :meth:`to_xarray` as netCDF-4 to ``path`` (``engine``: "h5netcdf", "netcdf4", or "scipy" for
+        netCDF-3; default the first installed netCDF-4 writer); returns the path. Needs ``frictionsim[io]``."""
+        from .io import write_netcdf
+
+        return write_netcdf(self.to_xarray(), path, engine)
+
+    def plot(self, columns=None, ax=None, **kwargs):
+        """Columns against time t [s] on ``ax`` (default a new figure): ``columns`` a name or names of states,
+        "friction_force" or "mode" (default the friction force); style keywords go to matplotlib's ``plot``.
+        Returns the Axes (:func:`frictionsim.plots.time_series_axes`)."""
+        from .plots import time_series_axes
+
+        return time_series_axes(self, columns, ax=ax, **kwargs)
 
     # ------------------------------------------------------------------ SciPy's OdeResult names
     @property

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import time
 import warnings
 from typing import List, Optional, Sequence, Union
 
@@ -130,13 +131,19 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     options.record_event_rows = _flag("record_events", record_events)
     if record_event_states is not None:
         options.record_event_states = _flag("record_event_states", record_event_states)
+    started = time.time()
     try:
         raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))
     except SimulationError as error:
         error._period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
+        partial = error.partial
+        if partial is not None:  # the partial result records what ran, as a completed one does
+            partial._run = (rig, options, started, conditions)
+            partial.stop_condition_count = len(conditions)
         raise
     result = Result(raw, period=rig.period)
     result.stop_condition_count = len(conditions)
+    result._run = (rig, options, started, conditions)  # Result.metadata: its provenance, made when first asked for
     for message in result.warnings:
         warnings.warn(message, AccuracyWarning, stacklevel=2)
     return result

@@ -291,8 +291,23 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
                     stop.set()
                 for future in futures:
                     future.cancel()
-    return SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
-                       elapsed=time.perf_counter() - started)
+    result = SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
+                         elapsed=time.perf_counter() - started)
+    result.metadata = _provenance(function, fixed, pool, result)
+    return result
+
+
+def _provenance(function: Callable[..., Any], fixed: Mapping[str, Any], pool: Optional[cf.Executor],
+                result: "SweepResult") -> Dict[str, Any]:
+    """The sweep's provenance record: the function, ``fixed`` (rigs and laws by repr), executor and wall time."""
+    from .provenance import collect
+
+    rigs = {name: value for name, value in fixed.items() if hasattr(value, "state_names")}  # the engine's rigs
+    return collect(rigs=rigs, extra={
+        "sweep": {"function": _qualified_name(function), "fixed": {name: repr(value) for name, value in fixed.items()},
+                  "parameters": list(result.parameters), "points": len(result.points),
+                  "failed": len(result.failed), "executor": type(pool).__name__ if pool is not None else "serial",
+                  "elapsed_s": result.elapsed}})
 
 
 def _require_picklable(pool: cf.Executor, function: Callable[..., Any], fixed: Mapping[str, Any],
@@ -344,6 +359,9 @@ class SweepResult:
         The lengths of the grid's axes for a Cartesian grid, else None.
     elapsed : float, s
         Wall-clock time of the sweep.
+    metadata : dict
+        Provenance (:func:`frictionsim.provenance.collect`): version, the function, ``fixed`` by repr (rigs with
+        their parameters), executor, time, platform; the ``attrs`` of :meth:`to_netcdf`.
     """
 
     points: List[Dict[str, Any]]
@@ -351,6 +369,7 @@ class SweepResult:
     parameters: List[str]
     grid_shape: Optional[Tuple[int, ...]] = None
     elapsed: float = field(default=0.0, compare=False)
+    metadata: Dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
     def __len__(self) -> int:
         return len(self.points)
@@ -424,3 +443,89 @@ class SweepResult:
         if "error" in frame:
             frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
         return frame
+
+    def to_xarray(self, units: Optional[Mapping[str, str]] = None):
+        """The sweep as an :class:`xarray.Dataset`: over the grid's axes (one dimension per parameter, its values
+        the coordinate) for a Cartesian grid, else over ``point`` with the parameters as coordinates. A scalar
+        value is the variable "value", a dict value one variable per key (numbers, or strings); failed points are
+        NaN (or "") with their error in the variable "error" ("" elsewhere). ``units``: name -> unit of parameters and values (``units``
+        attributes). ``attrs``: :attr:`metadata`. Needs ``frictionsim[io]``."""
+        from .io import metadata_attrs, require_xarray
+
+        xr = require_xarray()
+        units = dict(units or {})
+        columns = self._value_columns(text=True)
+        axes = self.axes
+        dims = tuple(self.parameters) if axes is not None else ("point",)
+        shape = self.grid_shape if axes is not None else (len(self.points),)
+
+        def attrs(name: str) -> Dict[str, str]:
+            return {"units": units[name]} if name in units else {}
+
+        data = {name: (dims, column.reshape(shape), attrs(name)) for name, column in columns.items()}
+        if self.failed:
+            errors = ["" if not isinstance(v, BaseException) else f"{type(v).__name__}: {v}" for v in self.values]
+            data["error"] = (dims, np.array(errors, dtype=str).reshape(shape))
+        if axes is not None:
+            coords = {name: (name, _coordinate(values, name), attrs(name)) for name, values in axes.items()}
+        else:
+            coords = {name: ("point", _coordinate([p.get(name, math.nan) for p in self.points], name), attrs(name))
+                      for name in self.parameters}
+        return xr.Dataset(data, coords=coords, attrs=metadata_attrs(self.metadata or {}, title="frictionsim sweep"))
+
+    def to_netcdf(self, path, *, units: Optional[Mapping[str, str]] = None, engine: Optional[str] = None):
+        """Write :meth:`to_xarray` as netCDF to ``path`` (see :meth:`frictionsim.Result.to_netcdf`); returns it."""
+        from .io import write_netcdf
+
+        return write_netcdf(self.to_xarray(units), path, engine)
+
+    def plot(self, key: Optional[str] = None, ax=None, **kwargs):
+        """The values over the grid on ``ax`` (:func:`frictionsim.plots.sweep_axes`): a line over a 1-D grid, a
+        colour map over a 2-D one; ``key`` picks an entry of dict values. Returns the Axes."""
+        from .plots import sweep_axes
+
+        return sweep_axes(self, key, ax=ax, **kwargs)
+
+    def _value_columns(self, text: bool = False) -> Dict[str, np.ndarray]:
+        """The values as float columns by name ("value", or each key of dict values), NaN at failed points; with
+        ``text``, a key whose values are all strings is a string column ("" at failed points)."""
+        keys: List[str] = []
+        for value in self.values:
+            if isinstance(value, Mapping):
+                keys += [k for k in value if k not in keys]
+        names = keys or ["value"]
+        ok = [value for value in self.values if not isinstance(value, BaseException)]
+
+        def items(name):
+            return [value.get(name, math.nan) if isinstance(value, Mapping) else value for value in ok]
+
+        out: Dict[str, np.ndarray] = {}
+        for name in names:
+            if text and ok and all(isinstance(item, str) for item in items(name)):
+                out[name] = np.array(["" if isinstance(v, BaseException) else
+                                      (v.get(name, "") if isinstance(v, Mapping) else v) for v in self.values],
+                                     dtype=str)
+                continue
+            column = np.full(len(self.values), math.nan)
+            for i, value in enumerate(self.values):
+                if isinstance(value, BaseException):
+                    continue
+                item = value.get(name, math.nan) if isinstance(value, Mapping) else value
+                try:
+                    if isinstance(item, (str, bytes)):
+                        raise TypeError(item)
+                    column[i] = float(item)
+                except (TypeError, ValueError):
+                    raise InvalidParameterError(f"to_xarray: the values must be numbers or strings, or dicts of them "
+                                                f"(point {i} has {name} = {type(item).__name__} {item!r:.60})",
+                                                "values") from None
+            out[name] = column
+        return out
+
+
+def _coordinate(values: List[Any], name: str) -> np.ndarray:
+    """Parameter values as a coordinate array: numbers as floats or ints, anything else (a friction law) by repr."""
+    array = np.asarray(values)
+    if array.dtype.kind in "biuf":
+        return array
+    return np.array([v if isinstance(v, str) else repr(v) for v in values], dtype=str)

@@ -30,7 +30,7 @@ from .errors import InvalidParameterError
 from .simulation import SOLVER_DEFAULTS
 
 __all__ = ["FIG7", "LimitCycle", "StickSlipMap", "compare_laws", "fig7_friction", "fig7_laws", "limit_cycle",
-           "simulate_fig7", "stick_slip_map", "stick_slip_point"]
+           "severity_index", "simulate_fig7", "stick_slip_map", "stick_slip_point"]
 
 #: Paper 001, Fig. 7 (measured / simulated): stick-slip frequency [Hz] and peak disc speed [rad/s].
 FIG7 = {"reference_speed": 5.76, "normal_force": 35.0, "frequency_measured": 0.83, "frequency_simulated": 0.84,
@@ -100,9 +100,26 @@ class LimitCycle:
         """Does the disc stick in the cycle (a limit cycle that touches |w| <= stick_speed)?"""
         return self.cycles > 0 and self.stick_fraction > 0.0
 
+    @property
+    def severity(self) -> float:
+        """Stick-slip severity index [-]: peak-to-peak speed over twice the mean speed, (peak - trough) / (2 |mean|),
+        the measure drilling reports torsional stick-slip by (half the speed's swing against its mean): A/m for a
+        sinusoid of mean m and amplitude A, 1 or more once the speed swings down to rest and back (a cycle from
+        rest to a peak P has P / (2 mean)). 0 when the speed does not move; inf for a swing about a zero mean."""
+        return severity_index(self.peak, self.trough, self.mean)
+
     def __repr__(self) -> str:
         return (f"LimitCycle(frequency={self.frequency:.4g} Hz, peak={self.peak:.4g} rad/s, "
                 f"trough={self.trough:.3g} rad/s, stick_fraction={self.stick_fraction:.3f}, cycles={self.cycles})")
+
+
+def severity_index(peak, trough, mean):
+    """(peak - trough) / (2 |mean|) elementwise (see :attr:`LimitCycle.severity`); NaN stays NaN (a failed run)."""
+    peak, trough, mean = (np.asarray(x, dtype=float) for x in (peak, trough, mean))
+    swing = peak - trough
+    with np.errstate(divide="ignore", invalid="ignore"):
+        index = np.where(swing == 0.0, 0.0, swing / (2.0 * np.abs(mean)))
+    return float(index) if index.ndim == 0 else index
 
 
 def limit_cycle(result, transient: float = 0.0, *, speed: str = "disc_speed", level: Optional[float] = None,
@@ -156,8 +173,9 @@ def compare_laws(laws: Optional[Dict[str, Any]] = None, *, t_end: float = 40.0, 
     for name, law in (fig7_laws() if laws is None else laws).items():
         rig, result = simulate_fig7(law, t_end, **rig_params)
         cycle = limit_cycle(result, transient)
-        rows.append({"law": name, "stick_slip": cycle.stick_slip, **asdict(cycle), "steps": result.stats["steps"],
-                     "events": result.stats["events"], "natural_frequency": rig.natural_frequency})
+        rows.append({"law": name, "stick_slip": cycle.stick_slip, **asdict(cycle), "severity": cycle.severity,
+                     "steps": result.stats["steps"], "events": result.stats["events"],
+                     "natural_frequency": rig.natural_frequency})
     return pd.DataFrame(rows)
 
 
@@ -171,6 +189,7 @@ def stick_slip_point(*, reference_speed: float, normal_force: float, friction=No
     values = asdict(cycle)
     values["stick_slip"] = float(cycle.stick_slip)
     values["peak_ratio"] = cycle.peak / reference_speed
+    values["severity"] = cycle.severity
     return values
 
 
@@ -178,7 +197,8 @@ def stick_slip_point(*, reference_speed: float, normal_force: float, friction=No
 class StickSlipMap:
     """Stick-slip over a (reference speed, normal force) grid: arrays of shape (len(reference_speeds),
     len(normal_forces)). stick_slip: True where the disc sticks in a limit cycle; frequency [Hz] (0 without an
-    oscillation), peak_ratio = peak disc speed / w_ref, stick_fraction; failed: True where the run failed
+    oscillation), peak_ratio = peak disc speed / w_ref, stick_fraction, severity (the stick-slip severity index
+    (peak - trough) / (2 mean) of the disc speed, :attr:`LimitCycle.severity`); failed: True where the run failed
     (``errors="collect"``; NaN in the float arrays, False in stick_slip)."""
 
     reference_speeds: np.ndarray
@@ -189,9 +209,52 @@ class StickSlipMap:
     stick_fraction: np.ndarray
     sweep: Any
     failed: np.ndarray
+    severity: np.ndarray
+
+    #: Units of the map's coordinates and measures ("1": dimensionless).
+    UNITS = {"reference_speed": "rad/s", "normal_force": "N", "frequency": "Hz", "peak_ratio": "1",
+             "stick_fraction": "1", "severity": "1"}
 
     def to_pandas(self):
         return self.sweep.to_pandas()
+
+    @property
+    def metadata(self) -> Dict[str, Any]:
+        """Provenance of the map (its sweep's, :attr:`frictionsim.SweepResult.metadata`)."""
+        return self.sweep.metadata
+
+    def to_xarray(self):
+        """The map as an :class:`xarray.Dataset` over (reference_speed [rad/s], normal_force [N]): stick_slip,
+        failed, frequency [Hz], peak_ratio, stick_fraction and severity, with units; ``attrs`` the provenance.
+        Needs ``frictionsim[io]``."""
+        from .io import metadata_attrs, require_xarray
+
+        xr = require_xarray()
+        dims = ("reference_speed", "normal_force")
+        units = self.UNITS
+        data = {"stick_slip": (dims, np.asarray(self.stick_slip, dtype=bool)),
+                "failed": (dims, np.asarray(self.failed, dtype=bool))}
+        for name in ("frequency", "peak_ratio", "stick_fraction", "severity"):
+            data[name] = (dims, np.asarray(getattr(self, name), dtype=float), {"units": units[name]})
+        coords = {"reference_speed": ("reference_speed", np.asarray(self.reference_speeds, dtype=float),
+                                      {"units": units["reference_speed"], "long_name": "reference speed w_ref"}),
+                  "normal_force": ("normal_force", np.asarray(self.normal_forces, dtype=float),
+                                   {"units": units["normal_force"], "long_name": "normal force N2 on the disc"})}
+        return xr.Dataset(data, coords=coords,
+                          attrs=metadata_attrs(self.metadata or {}, title="stick-slip map of the torsional rig"))
+
+    def to_netcdf(self, path, *, engine: Optional[str] = None):
+        """Write :meth:`to_xarray` as netCDF to ``path`` (see :meth:`frictionsim.Result.to_netcdf`); returns it."""
+        from .io import write_netcdf
+
+        return write_netcdf(self.to_xarray(), path, engine)
+
+    def plot(self, measure: str = "severity", ax=None, **kwargs):
+        """One measure of the map as a colour map on ``ax`` (:func:`frictionsim.plots.stick_slip_map_axes`):
+        "severity", "peak_ratio", "frequency" or "stick_fraction". Returns the Axes."""
+        from .plots import stick_slip_map_axes
+
+        return stick_slip_map_axes(self, measure, ax=ax, **kwargs)
 
 
 def stick_slip_map(reference_speeds: Sequence[float], normal_forces: Sequence[float], *, friction=None,
@@ -215,4 +278,5 @@ def stick_slip_map(reference_speeds: Sequence[float], normal_forces: Sequence[fl
     failed = np.zeros(result.grid_shape, dtype=bool)
     failed.flat[result.failed] = True
     return StickSlipMap(speeds, forces, result.as_array("stick_slip") > 0.5, result.as_array("frequency"),
-                        result.as_array("peak_ratio"), result.as_array("stick_fraction"), result, failed)
+                        result.as_array("peak_ratio"), result.as_array("stick_fraction"), result, failed,
+                        result.as_array("severity"))

@@ -158,7 +158,8 @@ def test_the_example_runs_from_the_command_line(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["run", str(EXAMPLE), "--out", str(out)]) == 0
     names = {p.name for p in out.iterdir()}
-    assert names == {"pi_top_drive.csv", "stiff_top_drive.csv", "summary.csv", "scenario.toml", "bit_speed.png",
+    assert names == {"pi_top_drive.csv", "stiff_top_drive.csv", "summary.csv", "scenario.toml", "metadata.json",
+                     "bit_speed.png",
                      "stick_slip_map_pi_top_drive.csv", "stick_slip_map_pi_top_drive.png",
                      "stick_slip_map_stiff_top_drive.csv", "stick_slip_map_stiff_top_drive.png"}
     summary = pd.read_csv(out / "summary.csv").set_index("case")

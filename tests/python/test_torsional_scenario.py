@@ -78,7 +78,7 @@ def test_run_short_example_writes_expected_files(tmp_path, capsys):
     source.write_text(_short())
     out = tmp_path / "out"
     assert main(["run", str(source), "--out", str(out)]) == 0
-    expected = {"eq6.csv", "stribeck.csv", "lugre.csv", "summary.csv", "scenario.toml"} | TORSIONAL_PLOTS
+    expected = {"eq6.csv", "stribeck.csv", "lugre.csv", "summary.csv", "scenario.toml", "metadata.json"} | TORSIONAL_PLOTS
     assert set(_files(out)) == expected
     assert _files(tmp_path) == ["fig7_torsional.toml", "out"] + [f"out/{f}" for f in sorted(expected)]
     for name in TORSIONAL_PLOTS:
@@ -132,7 +132,7 @@ def test_plot_subset_and_window(tmp_path):
     source.write_text(text)
     assert scenario.load(source).output.plot_window == (5.0, 8.0)
     assert main(["run", str(source), "--out", str(tmp_path / "out")]) == 0
-    assert set(_files(tmp_path / "out")) == {"summary.csv", "scenario.toml", "phase_portrait.png"}
+    assert set(_files(tmp_path / "out")) == {"summary.csv", "scenario.toml", "metadata.json", "phase_portrait.png"}
     _assert_png(tmp_path / "out" / "phase_portrait.png")
 
 

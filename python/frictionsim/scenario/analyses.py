@@ -140,6 +140,7 @@ class LimitCycleRun(_Run):
             "stick_slip": bool(c.stick_slip), "frequency_Hz": c.frequency, "period_s": c.period,
             "peak_speed_rad_s": c.peak, "trough_speed_rad_s": c.trough, "mean_speed_rad_s": c.mean,
             "peak_ratio": c.peak / w_ref if w_ref != 0 else math.nan, "stick_fraction": c.stick_fraction,
+            "severity": c.severity,
             "mean_friction_torque_Nm": self.mean_friction_torque, "cycles": int(c.cycles),
             "natural_frequency_Hz": float(self.rig.natural_frequency),
             "stick_speed_rad_s": LIMIT_CYCLE.stick_speed(self.case), "transient_s": LIMIT_CYCLE.transient(self.case),
@@ -305,10 +306,11 @@ class LimitCycle(Analysis):
                        ("normal_force_N", "N2 [N]", ".4g"), ("frequency_Hz", "f [Hz]", ".4f"),
                        ("period_s", "period [s]", ".4f"), ("peak_speed_rad_s", "peak [rad/s]", ".4g"),
                        ("trough_speed_rad_s", "trough [rad/s]", ".3g"), ("stick_fraction", "stick", ".3f"),
-                       ("mean_friction_torque_Nm", "mean T_f2 [N m]", ".4f"), ("cycles", "cycles", "d"),
-                       ("events", "events", "d"), ("steps", "steps", "d")]
+                       ("severity", "severity", ".3f"), ("mean_friction_torque_Nm", "mean T_f2 [N m]", ".4f"),
+                       ("cycles", "cycles", "d"), ("events", "events", "d"), ("steps", "steps", "d")]
     summary_note = ("limit cycle of the disc speed w2 over whole cycles after the transient: f = stick-slip "
-                    "frequency, stick = share of the time with |w2| <= stick_speed; mean T_f2 over the same cycles")
+                    "frequency, stick = share of the time with |w2| <= stick_speed, severity = (peak - trough) / "
+                    "(2 mean); mean T_f2 over the same cycles")
 
     def unknown_note(self, kind) -> str:
         return f" for {article(kind.name)} {kind.name} rig (its limit cycle)"

@@ -1,19 +1,26 @@
-"""Running scenario cases and writing their outputs (CSV tables, the scenario text, PNG plots). How a run is
-measured, summarised and plotted is its rig kind's analysis (:mod:`frictionsim.scenario.analyses`)."""
+"""Running scenario cases and writing their outputs (tables as CSV, netCDF or parquet, the scenario text, PNG plots
+and always ``metadata.json``: the provenance of every case). How a run is measured, summarised and plotted is its rig
+kind's analysis (:mod:`frictionsim.scenario.analyses`)."""
 
 from __future__ import annotations
 
+import json
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, List, Optional, Tuple, Union
+from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
+from ..errors import InvalidParameterError
 from ..simulation import simulate
 from .specs import Case, Scenario
 
-__all__ = ["ScenarioRun", "run", "run_case"]
+__all__ = ["FORMATS", "ScenarioRun", "run", "run_case"]
+
+#: Table formats of :meth:`ScenarioRun.write`: csv (always there), netcdf and parquet (the extra frictionsim[io]).
+FORMATS = ("csv", "netcdf", "parquet")
+_SUFFIX = {"csv": ".csv", "netcdf": ".nc", "parquet": ".parquet"}
 
 
 def run_case(case: Case):
@@ -64,18 +71,57 @@ class ScenarioRun:
         plot has its own default window)."""
         return self.analysis.plot_window(self.runs, self.scenario.output.plot_window)
 
-    def write(self, directory: Union[str, Path]) -> List[Path]:
-        """Write the CSV tables and PNG plots chosen in ``output`` into ``directory`` (which must exist)."""
+    def metadata(self, *, command: Union[str, Iterable[str], None] = None) -> Dict[str, Any]:
+        """The provenance record of the run (:func:`frictionsim.provenance.collect`): the rigs by case name, and per
+        case (``cases``) its solver options, solver stats, start time (UTC) and wall time."""
+        from .. import provenance
+
+        record = provenance.collect(command=command, rigs={run.case.name: run.rig for run in self.runs},
+                                    extra={"scenario": {"name": self.scenario.name, "title": self.scenario.title,
+                                                        "source": None if self.scenario.source is None
+                                                        else str(self.scenario.source)}})
+        record["cases"] = []
+        for run in self.runs:
+            case = run.result.metadata
+            record["cases"].append({"name": run.case.name, "law": run.case.friction.label,
+                                    "created_utc": case.get("created_utc"),
+                                    "solver_options": case.get("solver_options", {}),
+                                    "solver_stats": case.get("solver_stats", {}),
+                                    "wall_time_s": float(run.wall_time)})
+        return record
+
+    def write(self, directory: Union[str, Path], format: str = "csv", *,
+              command: Union[str, Iterable[str], None] = None) -> List[Path]:
+        """Write the tables and PNG plots chosen in ``output`` into ``directory`` (which must exist), and always
+        ``metadata.json`` (:meth:`metadata`, with ``command`` when given).
+
+        ``format``: the tables as "csv", "netcdf" (one file per case: the run's Dataset, events and units included,
+        with its derived columns; the summary over ``case``; provenance in the attributes) or "parquet" (the
+        provenance in the schema's metadata). netcdf and parquet need the extra frictionsim[io]; the analysis's
+        own extra tables (a stick-slip map) stay CSV.
+        """
+        if not isinstance(format, str) or format not in FORMATS:
+            raise InvalidParameterError(f"format must be one of {', '.join(FORMATS)} (got {format!r})", "format")
+        if format == "netcdf":  # the missing extra is reported before anything is written
+            from ..io import netcdf_engine, require_xarray
+
+            require_xarray()
+            netcdf_engine()
+        elif format == "parquet":
+            from ..io import parquet_engine
+
+            parquet_engine()
         directory = Path(directory)
         output, written = self.scenario.output, []
+        record = self.metadata(command=command)
         frames = [(run.case.name, run.case.friction.label, run.timeseries()) for run in self.runs]
         if "timeseries" in output.tables:
-            for name, _, frame in frames:
-                written.append(directory / f"{name}.csv")
-                _write_csv(frame, written[-1])
+            for run, (name, _, frame) in zip(self.runs, frames):
+                written.append(directory / f"{name}{_SUFFIX[format]}")
+                _write_timeseries(run, frame, written[-1], format)
         if "summary" in output.tables:
-            written.append(directory / "summary.csv")
-            self.summary().to_csv(written[-1], index=False, float_format="%.10g")
+            written.append(directory / f"summary{_SUFFIX[format]}")
+            _write_summary(self.summary(), written[-1], format, record)
             written += self.analysis.write_tables(self.runs, directory)
         if self.scenario.text is not None and all(c.rig.samples is None for c in self.scenario.cases):
             # what was run, re-runnable with `frictionsim run` (not with a relative velocity_file: it would move)
@@ -84,8 +130,59 @@ class ScenarioRun:
         title = self.scenario.title or self.scenario.name
         traces = [(f"{name} ({label})" if name.lower() != label.lower() else label, frame)
                   for name, label, frame in frames]
-        return written + self.analysis.write_plots(self.runs, traces, output.plots, directory, title=title,
-                                                   plot_window=output.plot_window)
+        written += self.analysis.write_plots(self.runs, traces, output.plots, directory, title=title,
+                                             plot_window=output.plot_window)
+        from ..provenance import write_metadata
+
+        return written + [write_metadata(directory, record)]
+
+
+def _write_timeseries(run, frame, path: Path, format: str) -> None:
+    if format == "csv":
+        _write_csv(frame, path)
+    elif format == "parquet":
+        _write_parquet(frame, path, run.result.metadata)
+    else:
+        from ..io import state_units, write_netcdf
+
+        dataset = run.result.to_xarray()
+        rig_type = type(run.rig).__name__
+        for column in frame.columns:  # the rig kind's derived columns (relative velocity, drive force, ...)
+            if column not in dataset.variables and column != "t":
+                unit = state_units(column, rig_type)
+                dataset[column] = ("time", frame[column].to_numpy(), {} if unit is None else {"units": unit})
+        write_netcdf(dataset, path)
+
+
+def _write_summary(summary, path: Path, format: str, record: Dict[str, Any]) -> None:
+    if format == "csv":
+        summary.to_csv(path, index=False, float_format="%.10g")
+    elif format == "parquet":
+        _write_parquet(summary, path, record)
+    else:
+        from ..io import metadata_attrs, write_netcdf
+
+        dataset = summary.set_index("case").to_xarray()
+        dataset.attrs.update(metadata_attrs(record, title="frictionsim scenario summary"))
+        write_netcdf(dataset, path)
+
+
+def _write_parquet(frame, path: Path, record: Dict[str, Any]) -> None:
+    """``frame`` as parquet with the provenance record (JSON) in the file's key-value metadata under
+    "frictionsim" (read back with ``pyarrow.parquet.read_schema(path).metadata[b"frictionsim"]``)."""
+    from ..io import parquet_engine
+
+    engine = parquet_engine()
+    text = json.dumps(record, allow_nan=False)
+    if engine == "pyarrow":
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        table = pa.Table.from_pandas(frame, preserve_index=False)
+        table = table.replace_schema_metadata({**(table.schema.metadata or {}), b"frictionsim": text.encode()})
+        pq.write_table(table, path)
+    else:  # fastparquet
+        frame.to_parquet(path, engine=engine, index=False, custom_metadata={"frictionsim": text})
 
 
 def _write_csv(frame, path: Path) -> None:

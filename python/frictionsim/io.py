@@ -1,0 +1,232 @@
+"""Labelled outputs: results as xarray Datasets and netCDF files that carry their provenance.
+
+Needs the optional extra ``frictionsim[io]`` (xarray, and h5netcdf + h5py to write netCDF-4). netCDF-4 rather than
+xarray's built-in netCDF-3 writer (scipy): netCDF-3 has no 64-bit integers (the solver's counters), no Unicode
+strings (event and mode names) and no compression. Both h5netcdf and netCDF4 install as wheels; h5netcdf is tried
+first (pure Python on h5py), then netCDF4.
+
+A :class:`frictionsim.Result` becomes a Dataset over the dimension ``time`` [s]: one variable per state, the friction
+force (a torque [N m] on the torsional rig, the total wall friction torque of a drill string) and the contact mode (a
+string's count of stuck wall contacts), each with its ``units`` where known; the switches are their own dimension
+``event`` (time, switching function, modes, and the state before and after each over the dimension ``state``), and
+the stop conditions' crossings ``stop_event``. The Dataset's ``attrs`` hold the
+provenance record (:mod:`frictionsim.provenance`) as JSON under ``metadata``, plus its headline fields flat::
+
+    >>> result.to_netcdf("run.nc")
+    >>> dataset = frictionsim.io.open_dataset("run.nc")
+    >>> frictionsim.io.metadata(dataset) == result.metadata
+    True
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import re
+from pathlib import Path
+from typing import Any, Dict, Mapping, Optional, Union
+
+import numpy as np
+
+from .errors import InvalidParameterError
+
+__all__ = ["ENGINES", "STATE_UNITS", "PARQUET_ENGINES", "metadata", "netcdf_engine", "open_dataset",
+           "parquet_engine", "require_xarray", "result_dataset", "state_units", "write_netcdf"]
+
+#: netCDF writers accepted by ``to_netcdf(engine=...)``, the netCDF-4 ones first: the default is the first installed.
+ENGINES = ("h5netcdf", "netcdf4", "scipy")
+#: The module each engine needs.
+_ENGINE_MODULES = {"h5netcdf": ("h5netcdf", "h5py"), "netcdf4": ("netCDF4",), "scipy": ("scipy.io",)}
+#: pandas' parquet writers, in the order tried.
+PARQUET_ENGINES = ("pyarrow", "fastparquet")
+
+_EXTRA = "pip install 'frictionsim[io]'"
+
+#: Units [SI] of the states of the engine's rigs and laws, by name (the engine keeps no units on its states).
+STATE_UNITS: Dict[str, str] = {
+    "position": "m", "velocity": "m/s", "dahl_deflection": "m", "bristle_deflection": "m",
+    "friction_impulse": "N s", "friction_work": "J", "drive_work": "J", "disc_angle": "rad", "disc_speed": "rad/s",
+    "shaft_twist": "rad", "drive_speed": "rad/s", "current": "A", "speed_error_integral": "rad", "motor_work": "J",
+    "damping_work": "J", "electrical_work": "J", "ohmic_work": "J", "hoist_work": "J", "excitation_work": "J",
+    "wall_friction_work": "J", "bit_work": "J",
+    # the scenario time series' derived columns (frictionsim.scenario.rigs, RigKind.columns)
+    "surface_position": "m", "surface_velocity": "m/s", "relative_displacement": "m", "relative_velocity": "m/s",
+    "drive_force": "N", "disc_acceleration": "rad/s^2", "friction_torque": "N m", "shaft_torque": "N m",
+    "voltage": "V", "surface_torque": "N m", "bit_torque": "N m", "wall_friction_torque": "N m",
+    "bit_speed": "rad/s", "surface_speed": "rad/s",
+}
+#: Name patterns of states numbered per node or block.
+_PATTERN_UNITS = ((re.compile(r"theta_\d+$"), "rad"), (re.compile(r"omega_\d+$"), "rad/s"),
+                  (re.compile(r"u_\d+$"), "m"), (re.compile(r"v_\d+$"), "m/s"),  # a string's axial motion
+                  (re.compile(r"block_deflection_\d+$"), "m"))
+#: Rigs whose friction acts as a torque: friction_force is in N m there, its impulse in N m s.
+_TORQUE_RIGS = ("TorsionalRig", "StringRig")
+
+
+def require_xarray():
+    """The xarray module, or an ImportError saying how to get it."""
+    try:
+        return importlib.import_module("xarray")
+    except ImportError as error:
+        raise ImportError(f"labelled outputs (to_xarray, to_netcdf) need xarray, from the optional extra "
+                          f"frictionsim[io]: {_EXTRA}") from error
+
+
+def netcdf_engine(engine: Optional[str] = None) -> str:
+    """The netCDF writer to use: ``engine`` when given and installed, else the first installed of ``ENGINES``'
+    netCDF-4 writers. Raises InvalidParameterError for an unknown name, ImportError naming the extra when missing."""
+    if engine is not None:
+        if engine not in ENGINES:
+            raise InvalidParameterError(f"engine must be one of {', '.join(ENGINES)} (got {engine!r})", "engine")
+        if not _installed(engine):
+            raise ImportError(f"the netCDF engine {engine!r} needs {' and '.join(_ENGINE_MODULES[engine])}: "
+                              f"{_EXTRA}")
+        return engine
+    for name in ENGINES[:2]:
+        if _installed(name):
+            return name
+    raise ImportError(f"writing netCDF-4 needs h5netcdf (with h5py) or netCDF4, from the optional extra "
+                      f"frictionsim[io]: {_EXTRA}")
+
+
+def _installed(engine: str) -> bool:
+    try:
+        for module in _ENGINE_MODULES[engine]:
+            importlib.import_module(module)
+    except ImportError:
+        return False
+    return True
+
+
+def parquet_engine() -> str:
+    """pandas' parquet writer that is installed (pyarrow, else fastparquet), or an ImportError naming the extra."""
+    for name in PARQUET_ENGINES:
+        try:
+            importlib.import_module(name)
+            return name
+        except ImportError:
+            continue
+    raise ImportError(f"writing parquet needs pyarrow (or fastparquet), from the optional extra frictionsim[io]: "
+                      f"{_EXTRA}")
+
+
+def state_units(name: str, rig_type: Optional[str] = None) -> Optional[str]:
+    """The SI unit of a state or output column ``name`` (None when not known); ``rig_type`` (the rig's class name)
+    tells force from torque."""
+    torque = rig_type in _TORQUE_RIGS
+    if name == "friction_force":
+        return "N m" if torque else "N"
+    if name == "friction_impulse":
+        return "N m s" if torque else "N s"
+    if name == "t":
+        return "s"
+    if name in STATE_UNITS:
+        return STATE_UNITS[name]
+    return next((unit for pattern, unit in _PATTERN_UNITS if pattern.match(name)), None)
+
+
+# ------------------------------------------------------------------------------------------------ attrs
+def metadata_attrs(record: Mapping[str, Any], title: str = "") -> Dict[str, Any]:
+    """netCDF global attributes of a provenance record: the whole record as JSON under ``metadata`` (netCDF
+    attributes are flat: numbers, strings), and its headline fields flat for tools that list attributes."""
+    from .provenance import to_json_safe
+
+    record = to_json_safe(dict(record))
+    package = record.get("frictionsim", {})
+    attrs: Dict[str, Any] = {}
+    if title:
+        attrs["title"] = title
+    attrs["source"] = f"frictionsim {package.get('version', '')}".strip()
+    if "git_revision" in package:
+        attrs["frictionsim_git_revision"] = package["git_revision"]
+    if "created_utc" in record:
+        attrs["created_utc"] = record["created_utc"]
+    rigs = record.get("rigs") or []
+    if len(rigs) == 1:
+        attrs["rig"] = rigs[0].get("repr", "")
+    attrs["metadata"] = json.dumps(record, allow_nan=False)
+    return attrs
+
+
+def metadata(dataset_or_attrs: Any) -> Dict[str, Any]:
+    """The provenance record of a Dataset written by frictionsim (or of its ``attrs``)."""
+    attrs = getattr(dataset_or_attrs, "attrs", dataset_or_attrs)
+    if "metadata" not in attrs:
+        raise InvalidParameterError("metadata: the dataset carries no frictionsim provenance (no 'metadata' "
+                                    "attribute)", "dataset")
+    return json.loads(attrs["metadata"])
+
+
+# ------------------------------------------------------------------------------------------------ Result
+def result_dataset(result) -> Any:
+    """A :class:`frictionsim.Result` as an xarray Dataset (see the module's description); values are the Result's,
+    bit for bit."""
+    xr = require_xarray()
+    record = result.metadata
+    rigs = record.get("rigs") or [{}]
+    rig_type = rigs[0].get("type")
+    time = {"units": "s", "long_name": "time"}
+    data: Dict[str, Any] = {}
+    for i, name in enumerate(result.state_names):
+        data[name] = ("time", np.array(result.states[:, i]), _units(name, rig_type))
+    data["friction_force"] = ("time", np.array(result.friction_force),
+                              dict(_units("friction_force", rig_type),
+                                   long_name="friction torque" if rig_type in _TORQUE_RIGS else "friction force"))
+    if rig_type == "StringRig":  # a string's mode counts its stuck wall contacts
+        mode = {"long_name": "stuck wall contacts", "units": "1"}
+    else:
+        mode = {"long_name": "contact mode", "flag_values": np.array([-1, 0, 1], dtype=result.mode.dtype),
+                "flag_meanings": "slip_negative stick_or_smooth slip_positive"}
+    data["mode"] = ("time", np.array(result.mode), mode)
+    data.update(_event_variables(result.events, "event", result.state_names, stop=False))
+    data.update(_event_variables(result.stop_events, "stop_event", result.state_names, stop=True))
+    coords = {"time": ("time", np.array(result.t), time), "state": ("state", np.array(result.state_names, dtype=str))}
+    attrs = metadata_attrs(record, title="frictionsim simulation")
+    attrs.update(completed=int(result.completed), status=int(result.status), message=result.message,
+                 t_reached=float(result.t_reached))
+    if result.period is not None:
+        attrs["period"] = float(result.period)
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def _units(name: str, rig_type: Optional[str]) -> Dict[str, str]:
+    unit = state_units(name, rig_type)
+    return {} if unit is None else {"units": unit}
+
+
+def _event_variables(events, dim: str, state_names, *, stop: bool) -> Dict[str, Any]:
+    """The event log over its own dimension ``dim``: one variable per field of :class:`frictionsim.Event`."""
+    prefix = "stop_" if stop else "event_"
+    out: Dict[str, Any] = {
+        f"{prefix}time": (dim, np.array([e.time for e in events], dtype=float), {"units": "s"}),
+        f"{prefix}name": (dim, np.array([e.name for e in events], dtype=str)),
+        f"{prefix}switching_function": (dim, np.array([e.switching_function for e in events], dtype=np.int64)),
+        f"{prefix}mode_before": (dim, np.array([e.mode_before_name for e in events], dtype=str)),
+        f"{prefix}mode_after": (dim, np.array([e.mode_after_name for e in events], dtype=str)),
+    }
+    if stop:
+        out["stop_condition"] = (dim, np.array([e.stop_condition for e in events], dtype=np.int64))
+        out["stop_direction"] = (dim, np.array([e.direction for e in events], dtype=np.int64))
+    # the states at the switches, when the run kept them (record_event_states): all events or none do
+    if events and all(e.state_before is not None and e.state_after is not None for e in events):
+        for side in ("before", "after"):
+            rows = np.array([getattr(e, "state_" + side) for e in events], dtype=float)
+            out[f"{prefix}state_{side}"] = ((dim, "state"), rows.reshape(len(events), len(state_names)))
+    return out
+
+
+# ------------------------------------------------------------------------------------------------ files
+def write_netcdf(dataset, path: Union[str, Path], engine: Optional[str] = None) -> Path:
+    """Write ``dataset`` to ``path`` as netCDF (``engine``: see :func:`netcdf_engine`); returns the path."""
+    path = Path(path)
+    name = netcdf_engine(engine)
+    dataset.to_netcdf(path, engine=name)
+    return path
+
+
+def open_dataset(path: Union[str, Path], engine: Optional[str] = None):
+    """Open a netCDF file written by frictionsim, read it into memory and close it (no file handle left open)."""
+    xr = require_xarray()
+    name = netcdf_engine(engine) if engine is not None else None
+    with xr.open_dataset(Path(path), engine=name) as dataset:
+        return dataset.load()
