@@ -12,10 +12,16 @@ Identification by output-error least squares, one module a job:
   :mod:`.search_space` (log / linear search variables, bounds), :mod:`.validation` (the record),
   :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`, :mod:`.solver` (scan, least_squares,
   differential_evolution), :mod:`.uncertainty` (covariance, identifiability), :mod:`.result`
-  (IdentificationResult).
+  (IdentificationResult: AIC / BIC, eval, plot), :mod:`.profile` (profile-likelihood conf_interval),
+  :mod:`.progress` (verbose= / callback= of the searches, FitProgress);
+* :mod:`.compare`: compare_laws, several laws fitted to one record and ranked by AIC.
+
+Everything logs to ``logging.getLogger("frictionsim")``; nothing prints.
 """
 
+from .compare import compare_laws
 from .power_law import PowerLawFit, fit_power_law
+from .progress import FitProgress
 from .kinematic import identify, identify_dahl, identify_elasto_plastic, identify_lugre, identify_stribeck
 from .parameters import LAW_PARAMETERS
 from .result import IdentificationResult
@@ -26,4 +32,4 @@ from .torsional import (BranchFit, FrictionTorqueEstimate, HystereticFit, estima
 __all__ = ["PowerLawFit", "fit_power_law", "IdentificationResult", "LAW_PARAMETERS", "identify", "identify_dahl",
            "identify_lugre", "identify_elasto_plastic", "identify_stribeck", "identify_axial_rig",
            "FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
-           "fit_hysteretic_friction"]
+           "fit_hysteretic_friction", "compare_laws", "FitProgress"]

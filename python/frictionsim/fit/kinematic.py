@@ -170,8 +170,30 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
     fit = _fit(model, force, w, spec, method=method, opts=opts, scan_names=scan_names,
                x0_given=bool(user_guess))
     rig, state = rig_for(fit.q)
+    physical = lawdef.physical(fit.q)
+
+    def forward(t_new: Any, v_new: Any, n_new: Any, state_new: Any) -> np.ndarray:
+        """The fitted law on the kinematic rig for new inputs, run as every residual of the fit was."""
+        if v_new is None:
+            _reject("eval on the kinematic rig needs relative_velocity at t", "relative_velocity")
+        t_new, v_new = _record(t_new, v_new, "relative_velocity")
+        n_new, _ = _normal_force(n_arg if n_new is None else n_new, t_new)
+        if isinstance(state_new, str) and state_new == "zero":
+            state_new = [0.0] * lawdef.state_count if lawdef.state_count else None
+        elif state_new is None:
+            state_new = state
+        elif lawdef.state_count == 0:
+            _reject(f"initial_state: {lawdef.name} has no internal state", "initial_state")
+        else:
+            state_new = list(_vector("initial_state", np.atleast_1d(state_new), lawdef.state_count))
+        rig_new = KinematicRig(lawdef.build(physical), relative_velocity=(t_new, v_new), normal_force=n_new,
+                               initial_state=state_new)
+        kwargs = _with_state_atol(sim_kwargs, rig_new.state_names, force_atol, duration=duration, speed=v_max,
+                                  law_stiffness=lawdef.state_stiffness(physical))
+        return np.asarray(_simulate(rig_new, t_new, kwargs).friction_force)
+
     return _result(fit, lawdef, method=method, experiment="kinematic rig", signal_name="friction_force", t=t,
-                   measured=force, rig=rig, initial_state=state, started=started)
+                   measured=force, rig=rig, initial_state=state, started=started, weights=w, forward=forward)
 
 
 _COMMON_DOC = """
@@ -218,10 +240,14 @@ _COMMON_DOC = """
     **solver_options
         seed (0), polish (True), maxiter (100), popsize (15), tol (0.01), workers (1: threads for
         differential_evolution), max_nfev, diff_step (1e-3: forward-difference step in the search
-        variables), ftol/xtol/gtol (1e-10), loss ("linear"; the covariance assumes it), max_relative_stderr (0.3: above it a parameter
-        is flagged not identifiable), rcond (1e-4: singular-value ratio of the scaled Jacobian below which a
-        direction counts as unidentifiable), jacobian_step (1e-2, central differences for the covariance, in
-        the search variables), scan (True).
+        variables), ftol/xtol/gtol (1e-10), loss ("linear"; the covariance assumes it), max_relative_stderr
+        (0.3: above it a parameter is flagged not identifiable), rcond (1e-4: singular-value ratio of the scaled
+        Jacobian below which a direction counts as unidentifiable), jacobian_step (1e-2, central differences for
+        the covariance, in the search variables), scan (True), verbose (False: True logs every generation and
+        iteration at INFO to ``logging.getLogger("frictionsim")`` and shows it on stderr when no logging is
+        configured), callback (None: ``callback(progress)`` with a :class:`frictionsim.fit.FitProgress` after
+        every differential-evolution generation and least-squares iteration; returning True stops the search at
+        the best point found, and the result is then not a success).
 
     Returns
     -------

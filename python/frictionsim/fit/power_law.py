@@ -24,6 +24,13 @@ the same, so the printed R^2 is a different statistic or a slip. The closest sta
 value for dry and water but is 0.020 above it for WBM, 0.006 below for OBM and 0.0075 above for SBM. No other
 variant tried (R^2 of the power law in linear mu_df, of a direct nonlinear power fit, of linear or semi-log
 lines, of F_df or mu_df/mu_sf instead of mu_df) matches more than two of the five.
+
+Standard errors (not printed in the paper): the line is fitted by :func:`scipy.stats.linregress`, whose slope and
+intercept standard errors are the least-squares ones, sqrt of the diagonal of s^2 (X^T X)^-1 with s^2 = SS_res /
+(n - 2); eta' = 10**intercept and eta = eta' (2 pi)^c get theirs by the delta method (first-order propagation,
+with the slope-intercept covariance -mean(x) SE(slope)^2). Five runs per line leave them wide: on Table 4,
+c = -0.365 +- 0.107 (dry) to -0.092 +- 0.017 (SBM), eta' = 1.07 +- 0.73 (dry) to 0.123 +- 0.013 (SBM), one
+standard error.
 """
 
 from __future__ import annotations
@@ -34,6 +41,7 @@ from typing import NoReturn, Optional, Tuple, Union
 
 import numpy as np
 import pandas as pd
+from scipy import stats
 
 from ..errors import InvalidParameterError
 from .quality import _fit_quality, _require_finite
@@ -49,7 +57,8 @@ class PowerLawFit:
     Attributes: ``lubricant`` (normalised name, or None for an ungrouped table), ``slope`` (= c),
     ``intercept``, ``r_squared`` (1 - SS_res/SS_tot of the line, in log10 space), ``n_runs``,
     ``velocity_ratio_min`` and ``velocity_ratio_max`` (the v_a/v_d range fitted; outside it the law
-    extrapolates).
+    extrapolates), ``slope_stderr`` and ``intercept_stderr`` (least-squares standard errors, s^2 = SS_res /
+    (n - 2), from :func:`scipy.stats.linregress`) and ``slope_intercept_covariance`` (-mean(x) slope_stderr^2).
     """
 
     lubricant: Optional[str]
@@ -59,6 +68,9 @@ class PowerLawFit:
     n_runs: int
     velocity_ratio_min: float
     velocity_ratio_max: float
+    slope_stderr: float = 0.0
+    intercept_stderr: float = 0.0
+    slope_intercept_covariance: float = 0.0
 
     @property
     def exponent(self) -> float:
@@ -74,6 +86,25 @@ class PowerLawFit:
     def eta_eq15(self) -> float:
         """eta [-] of eq 15, mu_df = eta (u f / v_d)^c: eta = eta' (2 pi)^c."""
         return self.eta_prime * (2.0 * math.pi) ** self.exponent
+
+    @property
+    def exponent_stderr(self) -> float:
+        """Standard error of c [-] (= slope_stderr)."""
+        return self.slope_stderr
+
+    @property
+    def eta_prime_stderr(self) -> float:
+        """Standard error of eta' = 10**intercept by the delta method: ln(10) eta' SE(intercept)."""
+        return math.log(10.0) * self.eta_prime * self.intercept_stderr
+
+    @property
+    def eta_eq15_stderr(self) -> float:
+        """Standard error of eta = 10**(intercept + c log10(2 pi)) by the delta method, with the slope-intercept
+        covariance: ln(10) eta sqrt(Var b + L^2 Var c + 2 L Cov(b, c)), L = log10(2 pi)."""
+        lever = math.log10(2.0 * math.pi)
+        variance = (self.intercept_stderr ** 2 + lever ** 2 * self.slope_stderr ** 2
+                    + 2.0 * lever * self.slope_intercept_covariance)
+        return math.log(10.0) * self.eta_eq15 * math.sqrt(max(variance, 0.0))
 
     @property
     def adjusted_r_squared(self) -> float:
@@ -101,10 +132,11 @@ class PowerLawFit:
         return mu
 
     def to_dict(self) -> dict:
-        """The fields plus eta_prime, exponent, eta_eq15 and adjusted_r_squared."""
+        """The fields plus eta_prime, exponent, eta_eq15, adjusted_r_squared and their standard errors."""
         row = asdict(self)
         row.update(eta_prime=self.eta_prime, exponent=self.exponent, eta_eq15=self.eta_eq15,
-                   adjusted_r_squared=self.adjusted_r_squared)
+                   adjusted_r_squared=self.adjusted_r_squared, eta_prime_stderr=self.eta_prime_stderr,
+                   exponent_stderr=self.exponent_stderr, eta_eq15_stderr=self.eta_eq15_stderr)
         return row
 
 
@@ -140,18 +172,21 @@ def _fit(lubricant: Optional[str], rows: pd.DataFrame) -> PowerLawFit:
     _varying("fit_power_law: table column velocity_ratio", ratio, "table", where, "so the line has no slope")
     _varying("fit_power_law: table column mu_df", mu, "table", where)
     x, y = np.log10(ratio), np.log10(mu)
-    dx = x - x.mean()
-    slope = float(dx @ (y - y.mean())) / float(dx @ dx)
-    intercept = float(y.mean() - slope * x.mean())
+    line = stats.linregress(x, y)
+    slope, intercept = float(line.slope), float(line.intercept)
+    slope_se, intercept_se = float(line.stderr), float(line.intercept_stderr)
+    covariance = -float(x.mean()) * slope_se ** 2  # Cov(b, c) = -mean(x) s^2 / Sxx
     _, r_squared = _fit_quality(y, slope * x + intercept - y)
-    with np.errstate(over="ignore"):
+    with np.errstate(over="ignore", invalid="ignore"):  # the finiteness rule below names what overflowed
         eta_prime = np.power(10.0, intercept)
         eta_eq15 = eta_prime * np.power(2.0 * math.pi, slope)
+        eta_prime_se = math.log(10.0) * eta_prime * intercept_se
     _require_finite("fit_power_law", {"slope": slope, "intercept": intercept, "r_squared": r_squared,
-                                      "eta_prime": eta_prime, "eta_eq15": eta_eq15},
+                                      "eta_prime": eta_prime, "eta_eq15": eta_eq15, "slope_stderr": slope_se,
+                                      "intercept_stderr": intercept_se, "eta_prime_stderr": eta_prime_se},
                     {"table": np.concatenate([ratio, mu])})
     return PowerLawFit(lubricant, slope, intercept, r_squared, int(ratio.size), float(ratio.min()),
-                       float(ratio.max()))
+                       float(ratio.max()), slope_se, intercept_se, covariance)
 
 
 def _reject(rule: str, parameter: str = "table") -> NoReturn:
@@ -170,7 +205,8 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
     Returns a :class:`PowerLawFit` when ``lubricant`` is given (case-insensitive) or the table has no
     ``lubricant`` column, otherwise a DataFrame indexed by lubricant (in order of first appearance) with columns
     slope, intercept, eta_prime, exponent, eta_eq15, r_squared, adjusted_r_squared, n_runs,
-    velocity_ratio_min, velocity_ratio_max.
+    velocity_ratio_min, velocity_ratio_max, slope_stderr, intercept_stderr, eta_prime_stderr, eta_eq15_stderr
+    (standard errors: see the module docstring).
 
     Raises InvalidParameterError (a ValueError) naming ``table`` or ``lubricant``: not a DataFrame, no rows, a
     missing column or lubricant name, an unknown lubricant, fewer than 3 runs in a line, a velocity ratio or
@@ -208,5 +244,6 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
 
     fits = [_fit(key, rows).to_dict() for key, rows in table.groupby(names, sort=False)]
     columns = ["lubricant", "slope", "intercept", "eta_prime", "exponent", "eta_eq15", "r_squared",
-               "adjusted_r_squared", "n_runs", "velocity_ratio_min", "velocity_ratio_max"]
+               "adjusted_r_squared", "n_runs", "velocity_ratio_min", "velocity_ratio_max", "slope_stderr",
+               "intercept_stderr", "eta_prime_stderr", "eta_eq15_stderr"]
     return pd.DataFrame(fits)[columns].set_index("lubricant")

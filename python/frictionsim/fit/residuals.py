@@ -31,6 +31,9 @@ class _Evaluator:
         self.last_error = ""
         self._lock = threading.Lock()
         self._last: Optional[Tuple[bytes, np.ndarray]] = None
+        # the best point seen, for progress reports and a search stopped early (no extra simulation needed)
+        self.best_rss = math.inf
+        self.best_x: Optional[np.ndarray] = None
 
     def signal(self, q: Dict[str, float]) -> Optional[np.ndarray]:
         """The simulated signal at ``q``, or None if the run failed."""
@@ -57,6 +60,11 @@ class _Evaluator:
         r = np.full_like(self.measured, self.penalty) if out is None else out - self.measured
         r = r if self.weights is None else r * self.weights
         self._last = (key, r)
+        if out is not None:
+            rss = float(r @ r)
+            with self._lock:
+                if rss < self.best_rss:
+                    self.best_rss, self.best_x = rss, np.asarray(x, dtype=float).copy()
         return r.copy()
 
     def jacobian(self, x: Sequence[float], step: float, central: bool = False) -> np.ndarray:

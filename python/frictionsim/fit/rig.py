@@ -24,7 +24,7 @@ from .parameters import _canonical
 from .result import IdentificationResult, _result
 from .search_space import Bounds, _build_spec, _resolve_excess, _user_bounds, _user_values
 from .solver import _fit, _fit_setup
-from .validation import _record, _reject, _summable, _varying, _weights
+from .validation import _record, _reject, _summable, _time, _varying, _weights
 
 __all__ = ["identify_axial_rig"]
 
@@ -179,6 +179,27 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
 
     result_fit = _fit(model, measured, w, spec, method=method, opts=opts, scan_names=scan_names,
                       x0_given=bool(user_guess))
+    q_fit = dict(result_fit.q)
+
+    def forward(t_new: Any, v_new: Any, n_new: Any, state_new: Any) -> np.ndarray:
+        """The rig at the solution recorded at new times, run as every residual of the fit was."""
+        for name, value in (("relative_velocity", v_new), ("normal_force", n_new), ("initial_state", state_new)):
+            if value is not None:
+                _reject(f"eval on the axial vibration rig takes only t: the rig sets its own {name}", name)
+        t_new = _time(t_new)
+        if t_new[0] < 0.0:
+            _reject(f"t must not start before 0, when the rig starts (got t[0] = {t_new[0]!r} s)", "t")
+        late = t_new[0] > 0.0  # the run still starts at 0: the drive end is at v_d t
+        times = np.concatenate(([0.0], t_new)) if late else t_new
+        rig = rig_for(q_fit)
+        kwargs = _with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
+                                  law_stiffness=lawdef.state_stiffness(lawdef.physical(q_fit)),
+                                  drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
+        result = _simulate(rig, times, kwargs)
+        force = np.asarray(rig.drive_force(result.t, result["position"]))
+        return force[1:] if late else force
+
     return _result(result_fit, lawdef, method=method, experiment="axial vibration rig", signal_name="drive_force",
-                   t=t[window], measured=measured, rig=rig_for(result_fit.q), initial_state=None, started=started)
+                   t=t[window], measured=measured, rig=rig_for(result_fit.q), initial_state=None, started=started,
+                   weights=w, forward=forward)
 

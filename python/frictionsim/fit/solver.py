@@ -5,12 +5,15 @@
 * global search (what paper 000's genetic / particle-swarm methods are for):
   :func:`scipy.optimize.differential_evolution` over the same bounds, deterministic for a given ``seed``,
   polished by least_squares;
-* the uncertainty at the solution: :mod:`frictionsim.fit.uncertainty`.
+* the uncertainty at the solution: :mod:`frictionsim.fit.uncertainty`;
+* progress: ``verbose=`` / ``callback=`` (:mod:`frictionsim.fit.progress`), logged to ``logging.getLogger(
+  "frictionsim")``.
 """
 
 from __future__ import annotations
 
 import inspect
+import logging
 import math
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -20,6 +23,7 @@ import numpy as np
 from scipy import optimize
 
 from .parameters import _law_def, _LawDef
+from .progress import _Reporter, _StopSearch, _verbose_logging
 from .residuals import _Evaluator
 from .search_space import _Spec
 from .uncertainty import _residual_variance, _uncertainty
@@ -30,6 +34,8 @@ METHODS = ("least_squares", "differential_evolution")
 
 # SciPy renamed differential_evolution's ``seed`` to ``rng``
 _DE_SEED_KEYWORD = "rng" if "rng" in inspect.signature(optimize.differential_evolution).parameters else "seed"
+
+logger = logging.getLogger("frictionsim")
 
 
 def _check_method(method: str) -> str:
@@ -58,6 +64,8 @@ class _Options:
     rcond: float = 1e-4
     jacobian_step: float = 1e-2
     scan: bool = True
+    verbose: int = 0
+    callback: Optional[Callable[..., Any]] = None
 
 
 def _options(kwargs: Dict[str, Any]) -> _Options:
@@ -73,6 +81,10 @@ def _options(kwargs: Dict[str, Any]) -> _Options:
         value = getattr(opts, name)
         if isinstance(value, bool) or not float(value).is_integer() or value < 1:
             _reject(f"{name} must be a positive whole number (got {value!r})", name)
+    if not (isinstance(opts.verbose, (bool, int)) and opts.verbose >= 0):
+        _reject(f"verbose must be True, False or a non-negative whole number (got {opts.verbose!r})", "verbose")
+    if opts.callback is not None and not callable(opts.callback):
+        _reject(f"callback must be callable, callback(progress) -> bool (got {opts.callback!r})", "callback")
     for name in ("tol", "diff_step", "max_relative_stderr", "rcond", "jacobian_step"):
         value = getattr(opts, name)
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
@@ -112,19 +124,38 @@ def _coordinate_scan(evaluator: _Evaluator, spec: _Spec, names: Sequence[str], r
                     worse += 1
                     if worse >= patience:
                         break
+    logger.debug("coordinate scan of %s: best rss %.6g after %d simulations", ", ".join(names), 2.0 * best,
+                 evaluator.n_evaluations)
     return spec.with_refs(q)
 
 
-def _least_squares(evaluator: _Evaluator, spec: _Spec, x0: np.ndarray, opts: _Options):
+def _least_squares(evaluator: _Evaluator, spec: _Spec, x0: np.ndarray, opts: _Options,
+                   report: Optional[_Reporter] = None, stage: str = "least_squares") -> Tuple[np.ndarray, bool, str]:
+    """-> (x, success, message). Each iteration (one Jacobian, at the accepted iterate) is reported; a callback
+    that asks to stop ends the search at the best point seen."""
     lower, upper = spec.x_bounds()
     x0 = np.clip(x0, lower, upper)
-    return optimize.least_squares(
-        evaluator.residual, x0, jac=lambda x: evaluator.jacobian(x, opts.diff_step), bounds=(lower, upper),
-        method="trf", x_scale=1.0,
-        loss=opts.loss, ftol=opts.ftol, xtol=opts.xtol, gtol=opts.gtol, max_nfev=opts.max_nfev)
+
+    def jacobian(x: np.ndarray) -> np.ndarray:
+        if report is not None:
+            r = evaluator.residual(x)  # cached: least_squares evaluated it just before
+            if report(stage, x, float(r @ r), evaluator.n_evaluations):
+                raise _StopSearch
+        return evaluator.jacobian(x, opts.diff_step)
+
+    try:
+        ls = optimize.least_squares(
+            evaluator.residual, x0, jac=jacobian, bounds=(lower, upper), method="trf", x_scale=1.0,
+            loss=opts.loss, ftol=opts.ftol, xtol=opts.xtol, gtol=opts.gtol, max_nfev=opts.max_nfev)
+    except _StopSearch:
+        x = evaluator.best_x if evaluator.best_x is not None else x0
+        return np.clip(x, lower, upper), False, "stopped by the callback"
+    logger.debug("%s: %s (%d simulations so far)", stage, ls.message, evaluator.n_evaluations)
+    return ls.x, bool(ls.success), str(ls.message)
 
 
-def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.ndarray], opts: _Options):
+def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.ndarray], opts: _Options,
+                            report: Optional[_Reporter] = None):
     lower, upper = spec.x_bounds()
     if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))):
         bad = spec.names[int(np.flatnonzero(~(np.isfinite(lower) & np.isfinite(upper)))[0])]
@@ -132,6 +163,12 @@ def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.
     kwargs: Dict[str, Any] = dict(maxiter=int(opts.maxiter), popsize=int(opts.popsize), tol=float(opts.tol),
                                   polish=False, init="latinhypercube")
     kwargs[_DE_SEED_KEYWORD] = opts.seed
+    if report is not None:
+        def generation(xk: np.ndarray, convergence: float = 0.0) -> bool:  # signature of every SciPy >= 1.9
+            return report("differential_evolution", xk, evaluator.best_rss, evaluator.n_evaluations,
+                          float(convergence))
+
+        kwargs["callback"] = generation
     if x0 is not None:
         kwargs["x0"] = np.clip(x0, lower, upper)
     pool = None
@@ -168,6 +205,11 @@ class _Fit:
     message: str
     n_evaluations: int
     n_failed: int
+    x_stderr: np.ndarray  # standard errors in the search variables (inf: not determined)
+    rss: float  # weighted residual sum of squares at the solution
+    n_used: int  # samples with a positive weight: the m of s^2 = rss / (m - n)
+    evaluator: Optional[_Evaluator] = None  # the objective, kept for profile likelihood
+    opts: Optional[_Options] = None
 
 
 def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, weights: Optional[np.ndarray],
@@ -179,29 +221,41 @@ def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, 
     SimulationError on a failed run); ``spec`` gives the searched variables, bounds, fixed values and the map to
     reported parameters.
     """
+    with _verbose_logging(int(opts.verbose)):
+        return _fit_logged(model, measured, weights, spec, method=method, opts=opts, scan_names=scan_names,
+                           x0_given=x0_given)
+
+
+def _fit_logged(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray,
+                weights: Optional[np.ndarray], spec: _Spec, *, method: str, opts: _Options,
+                scan_names: Sequence[str], x0_given: bool) -> _Fit:
     evaluator = _Evaluator(model, measured, weights, spec)
+    # the reporter reads evaluator.spec: the scan re-centres it
+    report = _Reporter(int(opts.verbose), opts.callback, lambda x: evaluator.spec.physical(evaluator.spec.q(x)))
     messages = []
     success = True
+    logger.debug("fitting %s by %s to %d samples", ", ".join(spec.names), method, measured.size)
     if method == "least_squares":
         if opts.scan and scan_names:
             spec = _coordinate_scan(evaluator, spec, scan_names, rounds=2 if len(scan_names) > 1 else 1)
             evaluator.spec = spec
-        ls = _least_squares(evaluator, spec, np.zeros(len(spec.variables)), opts)
-        x = ls.x
-        success = bool(ls.success)
-        messages.append(f"least_squares: {ls.message.rstrip('.')}")
+        x, success, message = _least_squares(evaluator, spec, np.zeros(len(spec.variables)), opts, report)
+        messages.append(f"least_squares: {message.rstrip('.')}")
     else:
-        de = _differential_evolution(evaluator, spec, np.zeros(len(spec.variables)) if x0_given else None, opts)
+        de = _differential_evolution(evaluator, spec, np.zeros(len(spec.variables)) if x0_given else None, opts,
+                                     report)
         x = np.asarray(de.x, dtype=float)
-        messages.append(f"differential_evolution ({de.nit} generations): {str(de.message).rstrip('.')}")
-        success = bool(de.success)
-        if opts.polish:
-            ls = _least_squares(evaluator, spec, x, opts)
-            if evaluator.cost(ls.x) <= evaluator.cost(x):
-                x = ls.x
+        de_message = "stopped by the callback" if report.stopped else str(de.message).rstrip('.')
+        messages.append(f"differential_evolution ({de.nit} generations): {de_message}")
+        # a search the callback stopped has not converged, whatever differential_evolution reports
+        success = bool(de.success) and not report.stopped
+        if opts.polish and not report.stopped:
+            x_ls, ls_success, ls_message = _least_squares(evaluator, spec, x, opts, report, stage="polish")
+            if evaluator.cost(x_ls) <= evaluator.cost(x):
+                x = x_ls
             # the polish refines DE's answer; it cannot make up for a search that did not converge
-            success = success and bool(ls.success)
-            messages.append(f"least_squares polish: {ls.message.rstrip('.')}")
+            success = success and ls_success
+            messages.append(f"least_squares polish: {ls_message.rstrip('.')}")
 
     q = spec.q(x)
     signal = evaluator.signal(q)
@@ -216,6 +270,9 @@ def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, 
 
     jac = evaluator.jacobian(x, opts.jacobian_step, central=True) if ran and n else np.zeros((m, n))
     uncertainty = _uncertainty(spec, x, jac, s2, rcond=opts.rcond, max_relative_stderr=opts.max_relative_stderr)
+    weighted = residual if weights is None else residual * weights
+    logger.debug("fit done: rss %.6g, %d simulations (%d failed)", float(weighted @ weighted),
+                 evaluator.n_evaluations, evaluator.n_failed)
     return _Fit(spec=spec, x=x, q=q, signal=signal, residual=residual, success=success,
                 message="; ".join(messages), n_evaluations=evaluator.n_evaluations, n_failed=evaluator.n_failed,
-                **uncertainty)
+                rss=float(weighted @ weighted), n_used=m, evaluator=evaluator, opts=opts, **uncertainty)

@@ -6,8 +6,8 @@ Two steps, as the paper does them (docs/paper001_torsional_rig.md, section 5):
    T_f2 = -(J2 al2 + d2 (w2 - w3) + k2 (th2 - th3)), with w and al from a Savitzky-Golay differentiator.
 2. :func:`fit_hysteretic_friction`: stick / accelerating / decelerating samples, a linear least-squares
    ``poly22`` fit per slip branch (regressors 1, w, al, w^2, w al, al^2 in MATLAB's order p00 p10 p01 p20 p11
-   p02) and the stick slope a = Ts / w_s from the break-away torque Ts; returns a ready
-   :class:`frictionsim.HystereticFriction`.
+   p02), with the coefficients' standard errors, and the stick slope a = Ts / w_s from the break-away torque
+   Ts; returns a ready :class:`frictionsim.HystereticFriction`.
 
 ``estimate_friction_torque(...).fit()`` runs both with the fit's ``guard`` matched to the smoothing window.
 """
@@ -157,9 +157,12 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
 class BranchFit:
     """One slip branch of eq 6 by linear least squares: ``coefficients`` (c00, c10, c01, c20, c11, c02) in SI
     units (``poly22`` order), ``r_squared``, ``rmse`` [N m], ``samples``, ``condition_number`` of the design
-    with unit-norm columns (large: w and al too correlated along the cycle to separate the terms), and the
+    with unit-norm columns (large: w and al too correlated along the cycle to separate the terms), the
     ``speed_range`` [rad/s] and ``acceleration_range`` [rad/s^2] fitted (after the odd extension; outside
-    them the polynomial extrapolates)."""
+    them the polynomial extrapolates), and ``stderr``: the coefficients' least-squares standard errors, the
+    square roots of the diagonal of s^2 (X^T X)^-1 with s^2 = SS_res / (m - 6) (inf with m = 6 samples: an exact
+    fit leaves no residual to judge them). They assume independent errors; T_f2 from a Savitzky-Golay window is
+    correlated over the window, so they understate the spread by up to ~sqrt(window_samples)."""
 
     name: str
     coefficients: Tuple[float, float, float, float, float, float]
@@ -169,6 +172,7 @@ class BranchFit:
     condition_number: float
     speed_range: Tuple[float, float]
     acceleration_range: Tuple[float, float]
+    stderr: Optional[Tuple[float, float, float, float, float, float]] = None
 
     def torque(self, w, al):
         """The branch polynomial at (w, al) [N m]: no stick band, no branch selection."""
@@ -206,8 +210,10 @@ class HystereticFit:
                  f"{self.dropped_samples} slip dropped (within {self.guard} of a corner or "
                  f"|al| < {self.acceleration_threshold:.3g} rad/s^2)",
                  f"  {'':8}{'accelerating p':>16}{'decelerating n':>16}"]
+        lines[-1] += f"{'s.e. p':>12}{'s.e. n':>12}"
         for i, suffix in enumerate(("00", "10", "01", "20", "11", "02")):
-            lines.append(f"  {'p/n' + suffix:<8}{p.coefficients[i]:>16.6g}{n.coefficients[i]:>16.6g}")
+            se = "".join(f"{b.stderr[i]:>12.3g}" if b.stderr is not None else f"{'':>12}" for b in (p, n))
+            lines.append(f"  {'p/n' + suffix:<8}{p.coefficients[i]:>16.6g}{n.coefficients[i]:>16.6g}{se}")
         for label, attr, fmt in (("R^2", "r_squared", ".6f"), ("RMSE", "rmse", ".4g"), ("samples", "samples", "d"),
                                  ("cond", "condition_number", ".3g")):
             lines.append(f"  {label:<8}{getattr(p, attr):>16{fmt}}{getattr(n, attr):>16{fmt}}")
@@ -236,12 +242,20 @@ def _fit_branch(name: str, w: np.ndarray, al: np.ndarray, torque: np.ndarray) ->
     if rank < 6:
         _reject(fn, "disc_acceleration", f"gives the {name} branch a rank-deficient design (rank {rank} of 6): its "
                                          f"{w.size} samples do not vary enough in w and al to separate the 6 terms")
+    scaled = design / norms
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # the finiteness rule reports these
-        coefficients = solution / norms * units[2] / _design(np.array(units[0]), np.array(units[1]))
-        rmse, r_squared = _fit_quality(torque / units[2], design @ (solution / norms) - torque / units[2])
+        factor = units[2] / norms / _design(np.array(units[0]), np.array(units[1]))  # solution -> SI coefficients
+        coefficients = solution * factor
+        residual = scaled @ solution - torque / units[2]
+        rmse, r_squared = _fit_quality(torque / units[2], residual)
+        # Cov = s^2 (A^T A)^-1 of the scaled design A = U S V^T: s^2 V S^-2 V^T (no normal equations formed)
+        dof = w.size - 6
+        _, sv, vt = np.linalg.svd(scaled, full_matrices=False)
+        variance = (float(residual @ residual) / dof) * ((vt.T / sv) ** 2).sum(axis=1) if dof else np.full(6, np.inf)
+        stderr = np.abs(factor) * np.sqrt(variance)
     return BranchFit(name, tuple(float(c) for c in coefficients), r_squared, rmse * units[2], int(w.size),
                      float(singular[0] / singular[-1]), (float(w.min()), float(w.max())),
-                     (float(al.min()), float(al.max())))
+                     (float(al.min()), float(al.max())), tuple(float(e) for e in stderr))
 
 
 def _phase_end_torque(torque: np.ndarray, guard: int) -> float:

@@ -178,5 +178,8 @@ def _uncertainty(spec: _Spec, x: np.ndarray, jac: np.ndarray, s2: float, *, rcon
             why.append(text)
         identifiable[name] = not why
         reasons[name] = "; ".join(why) if why else f"identified: relative standard error {100 * rel:.2g}%"
+    x_stderr = np.sqrt(np.maximum(np.diag(cov_x), 0.0)) if n else np.zeros(0)
+    x_stderr[in_null] = math.inf
     return dict(params=params, fitted=fitted, stderr=stderr, covariance=cov_f, correlation=corr,
-                identifiable=identifiable, reasons=reasons, singular_values=sv, condition_number=condition)
+                identifiable=identifiable, reasons=reasons, singular_values=sv, condition_number=condition,
+                x_stderr=x_stderr)
