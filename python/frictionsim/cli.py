@@ -1,39 +1,62 @@
 """The ``frictionsim`` command line.
 
-    frictionsim run SCENARIO.toml [--out DIR]   simulate a scenario file (see frictionsim.scenario)
+    frictionsim run SCENARIO.toml [--out DIR] [--jobs N] [--format csv|netcdf|parquet]
+                                                simulate a scenario file (see frictionsim.scenario)
+    frictionsim sweep SWEEP.toml [--out DIR] [--jobs N]
+                                                a scenario over a grid of its parameters (frictionsim.scenario.
+                                                sweep_file): sweep.csv and sweep.png
+    frictionsim scenarios list | copy NAME [DEST]
+                                                the packaged example scenario and sweep files
     frictionsim demo [--out DIR] [--quick]      paper 000's Fig. 7 cases, friction reduction, Table 5 refit;
                                                 paper 001's torsional rig: Fig. 7, law comparison, stick-slip map
     frictionsim fit-table5 [--out DIR]          refit Table 5 from Table 4 and plot Fig. 11
+    frictionsim fit --law lugre DATA.csv [--out DIR]
+                                                identify a friction law from a record (frictionsim.fit.identify):
+                                                the fitted table, fit.csv, fit_record.csv, fit.png
     frictionsim torque-drag SURVEY.csv [--string OD:ID:LENGTH,...] [--mu 0.2 0.3] [--out DIR]
+                               [--oscillator MD:FORCE:FREQ,...] [--place]
                                                 soft-string torque and drag along a survey: per-node CSV,
-                                                broomstick and well-path plots (see frictionsim.wells)
+                                                broomstick and well-path plots (see frictionsim.wells); with
+                                                hydraulic oscillators, the vibrated broomstick and the zone of
+                                                influence; --place: the tool's placement curve
+
+Every command takes ``-q`` (errors only, no progress bar) and ``-v`` / ``-vv`` (the library's log messages,
+``logging.getLogger("frictionsim")``, at INFO / DEBUG on stderr). Progress bars go to stderr and only to a
+terminal. ``--jobs N`` runs a scenario's cases or a sweep's points in N processes; the results are those of
+``--jobs 1``, in the same order.
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
 target and moved into place (files already in the target that the command does not write are left alone).
-Ctrl-C or SIGTERM removes that temporary directory: nothing half-written is left behind.
+Ctrl-C or SIGTERM removes that temporary directory: nothing half-written is left behind. Every command that
+writes also writes ``metadata.json`` beside its outputs (:mod:`frictionsim.provenance`: version, git revision,
+command line, rigs, solver options and statistics, time, platform).
 
-Where ``run`` writes: ``--out DIR`` when given (the caller's choice); else the scenario's ``output.directory``,
-relative to the scenario file's folder and confined to it: an absolute path, a ``..`` or a symbolic link that
-leads out of it is refused unless ``--allow-outside`` is given (a scenario file from elsewhere must not write
+Where ``run`` and ``sweep`` write: ``--out DIR`` when given (the caller's choice); else the file's
+``output.directory``, relative to the file's folder and confined to it: an absolute path, a ``..`` or a symbolic
+link that leads out of it is refused unless ``--allow-outside`` is given (a file from elsewhere must not write
 anywhere it likes); else ``out/<file stem>`` in the working directory.
 
-Exit status: 0 on success, 2 for a bad scenario or command line (``error: <file>: <key>: <rule>`` on stderr),
-1 when a simulation stops early (with the time reached) or the outputs cannot be written, 130 on Ctrl-C, 143 on
-SIGTERM. ``torque-drag`` reports a bad survey with its file, line, station and field (exit 2).
+Exit status: 0 on success, 2 for a bad scenario, sweep file, data file or command line (``error: <file>: <key>:
+<rule>`` on stderr), 1 when a simulation stops early (with the time reached) or the outputs cannot be written,
+130 on Ctrl-C, 143 on SIGTERM. ``torque-drag`` reports a bad survey with its file, line, station and field
+(exit 2); ``fit`` exits 1 when the fit does not converge (its outputs are written all the same, to look at).
 """
 
 from __future__ import annotations
 
 import argparse
 import dataclasses
+import logging
 import math
 import os
+import shlex
 import shutil
 import sys
 import tempfile
 from contextlib import contextmanager
+from importlib import resources
 from pathlib import Path
-from typing import Iterator, List, Optional, Sequence
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequence
 
 from . import __version__
 from .errors import InvalidParameterError, SimulationError
@@ -42,6 +65,12 @@ __all__ = ["main", "staged_directory"]
 
 #: default output directory of ``demo`` and ``fit-table5`` (scripts/demo sets FRICTIONSIM_OUT_DIR)
 DEFAULT_OUT = os.environ.get("FRICTIONSIM_OUT_DIR", "out")
+#: ``--format`` of ``run``: the time series' file format (csv needs nothing; netcdf the [io] extra, parquet pyarrow)
+FORMATS = ("csv", "netcdf", "parquet")
+#: Log levels of -q, (none), -v, -vv.
+LEVELS = {-1: logging.ERROR, 0: logging.WARNING, 1: logging.INFO, 2: logging.DEBUG}
+
+log = logging.getLogger("frictionsim.cli")
 
 
 class CommandError(Exception):
@@ -57,25 +86,28 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     from .scenario import ScenarioError
 
     parser = _parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
     args = parser.parse_args(argv)
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return 2
-    try:
-        with _terminate_as_exception():
-            return args.command(args)
-    except KeyboardInterrupt:
-        print("error: interrupted", file=sys.stderr)
-        return 130
-    except _Terminated:
-        print("error: terminated (SIGTERM)", file=sys.stderr)
-        return 143
-    except ScenarioError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 2
-    except CommandError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return error.status
+    args.command_line = shlex.join(["frictionsim", *argv])
+    with _console_logging(args):
+        try:
+            with _terminate_as_exception():
+                return args.command(args)
+        except KeyboardInterrupt:
+            print("error: interrupted", file=sys.stderr)
+            return 130
+        except _Terminated:
+            print("error: terminated (SIGTERM)", file=sys.stderr)
+            return 143
+        except ScenarioError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return 2
+        except CommandError as error:
+            print(f"error: {error}", file=sys.stderr)
+            return error.status
 
 
 class _Terminated(BaseException):
@@ -101,19 +133,116 @@ def _terminate_as_exception() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
+# ------------------------------------------------------------------------------------ logging, progress, processes
+def _verbosity(args) -> int:
+    return -1 if getattr(args, "quiet", False) else min(getattr(args, "verbose", 0) or 0, 2)
+
+
+@contextmanager
+def _console_logging(args) -> Iterator[None]:
+    """The library logs to ``logging.getLogger("frictionsim")``; the command line shows it on stderr at the level
+    of -q / -v / -vv, for the length of the command only (main() may run many times in one process)."""
+    logger = logging.getLogger("frictionsim")
+    handler = logging.StreamHandler(sys.stderr)
+    handler.setFormatter(logging.Formatter("%(levelname)s: %(name)s: %(message)s"))
+    previous = logger.level
+    logger.setLevel(LEVELS[_verbosity(args)])
+    logger.addHandler(handler)
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(previous)
+
+
+def _progress(args, total: int, description: str, unit: str = "case"):
+    """A tqdm bar on stderr, shown only on a terminal and without -q."""
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=description, unit=unit, file=sys.stderr, leave=False, dynamic_ncols=True,
+                disable=args.quiet or not sys.stderr.isatty())
+
+
+def _ignore_interrupts() -> None:
+    """Pool workers leave Ctrl-C to the command (a terminal sends it to the whole process group): it stops the pool."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+@contextmanager
+def _imap(jobs: int, count: int) -> Iterator[Callable[[Callable, Iterable], Iterable]]:
+    """An ordered ``imap(function, items)``: the built-in map for one job, else a pool of ``jobs`` processes
+    (spawned: nothing of this process's threads or handlers is inherited). Leaving the block - Ctrl-C, SIGTERM,
+    an error - terminates the workers, so nothing keeps running after the command."""
+    if jobs == 1 or count <= 1:
+        yield map
+        return
+    import multiprocessing
+
+    pool = multiprocessing.get_context("spawn").Pool(min(jobs, count), initializer=_ignore_interrupts)
+    try:
+        yield pool.imap
+        pool.close()
+    finally:
+        pool.terminate()
+        pool.join()
+
+
+def _jobs(value: str) -> int:
+    try:
+        jobs = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number of processes (got {value!r})") from None
+    if jobs < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1 (got {jobs})")
+    return jobs
+
+
+# ----------------------------------------------------------------------------------------------- provenance
+def _metadata(args, directory: Path, *, rigs: Any = (), solver_options: Optional[Dict[str, Any]] = None,
+              stats: Optional[Dict[str, Any]] = None, extra: Optional[Dict[str, Any]] = None) -> List[Path]:
+    """[metadata.json] in ``directory`` (:func:`frictionsim.provenance.collect`, with the command line)."""
+    from . import provenance
+
+    record = provenance.collect(command=args.command_line, rigs=rigs, solver_options=solver_options, stats=stats,
+                                extra=extra)
+    return [provenance.write_metadata(directory, record)]
+
+
+# --------------------------------------------------------------------------------------------------- parser
+def _common(jobs: bool = False) -> argparse.ArgumentParser:
+    """-q / -v (and --jobs) for a subcommand: given after the command, they override the ones before it."""
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument("-q", "--quiet", action="store_true", default=argparse.SUPPRESS,
+                        help="errors only: no progress bar, no warnings")
+    common.add_argument("-v", "--verbose", action="count", default=argparse.SUPPRESS,
+                        help="the library's log messages (-v: INFO, -vv: DEBUG) on stderr")
+    if jobs:
+        common.add_argument("-j", "--jobs", type=_jobs, default=1, metavar="N",
+                            help="run in N processes (default 1); the results are the same")
+    return common
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="frictionsim",
         description="Friction-driven dynamics in drilling: simulate paper 000's axial vibrating-sliding rig, "
                     "kinematic friction rigs and paper 001's torsional drill-string rig with Coulomb, Stribeck, "
                     "Dahl, LuGre, elasto-plastic and hysteretic (eq 6) friction.",
-        epilog="Scenario files are TOML; see examples/scenarios/ and `python -c 'help(\"frictionsim.scenario\")'`.")
+        epilog="Scenario files are TOML; `frictionsim scenarios list` shows the packaged examples, and "
+               "`python -c 'help(\"frictionsim.scenario\")'` the format.")
     parser.add_argument("--version", action="version", version=f"frictionsim {__version__}")
+    parser.add_argument("-q", "--quiet", action="store_true", help="errors only: no progress bar, no warnings")
+    parser.add_argument("-v", "--verbose", action="count", default=0,
+                        help="the library's log messages (-v: INFO, -vv: DEBUG) on stderr")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")
+    common, parallel = [_common()], [_common(jobs=True)]
 
-    run = commands.add_parser("run", help="simulate a scenario file, write CSV tables and PNG plots",
+    run = commands.add_parser("run", parents=parallel, help="simulate a scenario file, write tables and PNG plots",
                               description="Simulate every case of a TOML scenario file; write per-case time "
-                                          "series, summary.csv and PNG plots; print the summary.")
+                                          "series, summary.csv, PNG plots and metadata.json; print the summary.")
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
     run.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, relative to "
                                               "the file's folder and confined to it, else out/<file stem>)")
@@ -121,10 +250,39 @@ def _parser() -> argparse.ArgumentParser:
                      help="let the file's output.directory be absolute or lead out of the file's folder")
     run.add_argument("--timeout", type=float, metavar="SECONDS",
                      help="wall-clock budget of each simulation (overrides the file's solver.timeout)")
+    run.add_argument("--format", choices=FORMATS, default="csv",
+                     help="file format of the time series (default csv; netcdf needs the [io] extra, parquet "
+                          "pyarrow)")
     run.set_defaults(command=_run)
 
-    demo = commands.add_parser("demo", help="papers 000 and 001: Fig. 7 cases, friction reduction, Table 5 "
-                                             "refit, torsional stick-slip",
+    sweep = commands.add_parser("sweep", parents=parallel, help="a scenario over a grid of its parameters",
+                                description="Run a sweep file (a scenario with a [grid] of \"section.key\" = "
+                                            "[values]; see `python -c 'help(\"frictionsim.scenario.sweep_file\")'`): "
+                                            "every case at every grid point; write sweep.csv (one row per point and "
+                                            "case), sweep.png, sweep.toml and metadata.json.")
+    sweep.add_argument("file", type=Path, help="sweep file (TOML)")
+    sweep.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, relative "
+                                                "to the file's folder and confined to it, else out/<file stem>)")
+    sweep.add_argument("--allow-outside", action="store_true",
+                       help="let the file's output.directory be absolute or lead out of the file's folder")
+    sweep.set_defaults(command=_sweep)
+
+    scenarios = commands.add_parser("scenarios", parents=common, help="the packaged example scenarios: list, copy",
+                                    description="The example scenario and sweep files that come with the package.")
+    actions = scenarios.add_subparsers(title="actions", metavar="ACTION")
+    listing = actions.add_parser("list", parents=common, help="name and title of each packaged example")
+    listing.set_defaults(command=_scenarios_list)
+    copying = actions.add_parser("copy", parents=common, help="copy a packaged example to edit and run it",
+                                 description="Copy the packaged example NAME (with or without .toml) to DEST: a "
+                                             "directory (default: the working directory), where it becomes "
+                                             "DEST/NAME.toml, or a new file. Never overwrites.")
+    copying.add_argument("name", help="the example's name (see `frictionsim scenarios list`)")
+    copying.add_argument("dest", nargs="?", default=".", help="directory or new file (default .)")
+    copying.set_defaults(command=_scenarios_copy)
+    scenarios.set_defaults(command=_scenarios_list)
+
+    demo = commands.add_parser("demo", parents=common, help="papers 000 and 001: Fig. 7 cases, friction reduction, "
+                                                            "Table 5 refit, torsional stick-slip",
                                description="Built-in scenarios of paper 000: Fig. 7 dry and OBM cases with Coulomb "
                                            "and Dahl friction, friction reduction against Tables 4-5, an amplitude "
                                            "sweep, and the Table 5 refit with the Fig. 11 plot. Paper 001 (into "
@@ -136,14 +294,44 @@ def _parser() -> argparse.ArgumentParser:
     demo.add_argument("--quick", action="store_true", help="a shorter amplitude sweep and a smaller stick-slip map")
     demo.set_defaults(command=_demo)
 
-    fit = commands.add_parser("fit-table5", help="refit Table 5 from Table 4, print both, plot Fig. 11",
+    fit = commands.add_parser("fit-table5", parents=common, help="refit Table 5 from Table 4, print both, plot Fig. 11",
                               description="Least-squares refit of paper 000's Table 5 (log10 mu_df against "
                                           "log10 v_a/v_d per lubricant) from Table 4, beside the printed values.")
     fit.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
     fit.set_defaults(command=_fit_table5)
 
-    td = commands.add_parser("torque-drag", help="soft-string torque and drag along a survey: per-node CSV, "
-                                                 "broomstick and well-path plots",
+    identify = commands.add_parser(
+        "fit", parents=common, help="identify a friction law from a measured record",
+        description="Fit a friction law to a CSV record of time, relative velocity, friction force and normal force "
+                    "(frictionsim.fit.identify: output-error least squares through the engine); print the fitted "
+                    "parameters with standard errors and identifiability; write fit.csv (the table), "
+                    "fit_record.csv (measured, model, residual), fit.png and metadata.json.")
+    identify.add_argument("data", type=Path, help="the record (CSV with a header row; '#' comments)")
+    identify.add_argument("--law", required=True, metavar="LAW",
+                          help="the law to fit: dahl, lugre, elasto_plastic, stribeck, ... (frictionsim.fit."
+                               "LAW_PARAMETERS)")
+    identify.add_argument("--time", default="t", metavar="COLUMN", help="time column [s] (default t)")
+    identify.add_argument("--velocity", default="relative_velocity", metavar="COLUMN",
+                          help="relative velocity column [m/s] (default relative_velocity)")
+    identify.add_argument("--force", default="friction_force", metavar="COLUMN",
+                          help="friction force column [N] (default friction_force)")
+    identify.add_argument("--normal", default="normal_force", metavar="COLUMN",
+                          help="normal force column [N] (default normal_force)")
+    identify.add_argument("--normal-force", type=float, metavar="N",
+                          help="a constant normal force [N] instead of a column")
+    identify.add_argument("--guess", type=_assignments, default={}, metavar="NAME=VALUE,...",
+                          help="starting values, e.g. mu=0.25,bristle_stiffness=5e4 (default: estimated from the "
+                               "record and a coarse scan)")
+    identify.add_argument("--fixed", type=_assignments, default={}, metavar="NAME=VALUE,...",
+                          help="parameters held at these values instead of fitted")
+    identify.add_argument("--method", choices=("least_squares", "differential_evolution"), default="least_squares",
+                          help="local least squares (default) or a global differential-evolution search")
+    identify.add_argument("--out", type=Path, help="output directory (default out/fit_<data file stem>)")
+    identify.set_defaults(command=_fit)
+
+    td = commands.add_parser("torque-drag", parents=common,
+                             help="soft-string torque and drag along a survey: per-node CSV, broomstick and well-path "
+                                  "plots; hydraulic oscillators and their placement",
                              description="Johancsik soft-string torque and drag of a drill string along a survey "
                                          "(CSV: md, inc, azi columns, units in the header such as 'md [m]', "
                                          "'inc [deg]'): tension, torque, side force and buckling per node for "
@@ -151,7 +339,11 @@ def _parser() -> argparse.ArgumentParser:
                                          "drilling with --wob) at each friction factor, and the broomstick plot of "
                                          "hook load while the string is run in. Writes into --out only: "
                                          "torque_drag.csv, broomstick.csv, trajectory.csv, broomstick.png, "
-                                         "well_path.png.")
+                                         "well_path.png, metadata.json. With --oscillator: the same broomstick with "
+                                         "the tools (oscillator_broomstick.csv, .png: each tool stays at its height "
+                                         "above the bit while the string is run in) and the zone of influence at "
+                                         "the bit depth (oscillator_zone.csv, oscillator_summary.csv); with --place: "
+                                         "the placement curve while sliding (placement.csv, placement.png).")
     td.add_argument("survey", type=Path, help="survey file (CSV)")
     td.add_argument("--string", default=DEFAULT_STRING, metavar="OD:ID:LENGTH,...",
                     help="the string's sections top to bottom, diameters and lengths in metres; one LENGTH may be "
@@ -178,6 +370,21 @@ def _parser() -> argparse.ArgumentParser:
                                                                                      "(default 10)")
     td.add_argument("--depth-step", type=float, default=30.0, metavar="M",
                     help="bit-depth step of the broomstick [m] (default 30)")
+    td.add_argument("--oscillator", type=_oscillators, metavar="MD:FORCE:FREQ,...",
+                    help="hydraulic oscillators (axial vibration tools): measured depth [m] at the full bit depth "
+                         "(or 'bit-H': H metres above the bit), force amplitude [N] and frequency [Hz] of each, "
+                         "e.g. bit-300:60e3:18")
+    td.add_argument("--operation", default="sliding_drilling", metavar="OP",
+                    help="the operation the oscillators' zone of influence is reported for (default "
+                         "sliding_drilling; one of frictionsim.wells.OPERATIONS)")
+    td.add_argument("--model", choices=("friction_vector", "table5"), default="friction_vector",
+                    help="how the vibration reduces friction: the friction vector's cycle mean (default) or paper "
+                         "000's Table 5 power law (with --lubricant)")
+    td.add_argument("--lubricant", choices=("dry", "water", "wbm", "obm", "sbm"), default=None,
+                    help="Table 5's row for --model table5")
+    td.add_argument("--place", action="store_true",
+                    help="place one tool (--oscillator's force and frequency, else 50 kN at 18 Hz) for the most weight "
+                         "on bit while sliding at the hook load that puts --wob on the bit without it")
     td.add_argument("--out", type=Path, help="output directory (default out/<survey file stem>)")
     td.set_defaults(command=_torque_drag)
     return parser
@@ -185,32 +392,64 @@ def _parser() -> argparse.ArgumentParser:
 
 # ------------------------------------------------------------------------------------------------------- commands
 def _run(args) -> int:
-    from .scenario import ScenarioRun, load, run_case
+    from .scenario import ScenarioRun, load
 
     scenario = load(args.scenario)
-    out = _output_directory(args, scenario)
+    out = _output_directory(args, args.scenario, scenario.output.directory, scenario.name)
     _check_target(out)
     if args.timeout is not None and not (args.timeout > 0 and math.isfinite(args.timeout)):
         raise CommandError(f"--timeout must be a positive number of seconds (got {args.timeout:g})", 2)
+    _check_format(args.format)
+    cases = list(scenario.cases)
+    if args.timeout is not None:
+        cases = [dataclasses.replace(c, solver=dataclasses.replace(c.solver, timeout=args.timeout)) for c in cases]
     runs = []
-    for index, case in enumerate(scenario.cases, start=1):
-        if args.timeout is not None:
-            case = dataclasses.replace(case, solver=dataclasses.replace(case.solver, timeout=args.timeout))
-        try:
-            runs.append(run_case(case))
-        except SimulationError as error:
-            raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: simulation stopped at t = "
-                               f"{error.time_reached:.9g} s of t_end = {case.solver.t_end:g} s: {error}", 1) from None
-        except InvalidParameterError as error:
-            raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: {error}", 2) from None
+    log.info("%s: %d cases", args.scenario, len(cases))
+    with _imap(args.jobs, len(cases)) as imap, _progress(args, len(cases), scenario.name) as bar:
+        outcomes = imap(_run_case_or_error, cases)
+        for index, (case, outcome) in enumerate(zip(cases, outcomes), start=1):
+            if isinstance(outcome, SimulationError):
+                raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: simulation stopped at t = "
+                                   f"{outcome.time_reached:.9g} s of t_end = {case.solver.t_end:g} s: {outcome}", 1)
+            if isinstance(outcome, InvalidParameterError):
+                raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: {outcome}", 2)
+            log.info("case[%d] %r: %.3g s", index, case.name, outcome.wall_time)
+            runs.append(outcome)
+            bar.update()
     result = ScenarioRun(scenario, runs)
     summary = result.summary()
     print(f"{args.scenario}: {scenario.title}" if scenario.title else str(args.scenario))
     print(_table(summary, result.analysis.summary_columns(summary)))
     print(result.analysis.summary_note)
-    written = _write(out, result.write)
+
+    # ScenarioRun.write writes metadata.json itself (rigs, solver options and counters per case)
+    written = _write(out, lambda directory: result.write(directory, format=args.format, command=args.command_line))
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
+
+
+def _run_case_or_error(case):
+    """run_case in a worker: the errors a case can end with come back as values, in order with the others."""
+    from .scenario import run_case
+
+    try:
+        return run_case(case)
+    except (SimulationError, InvalidParameterError) as error:
+        return error
+
+
+def _check_format(format: str) -> None:
+    """--format's optional packages, checked before anything runs (ScenarioRun.write checks them again)."""
+    from . import io
+
+    try:
+        if format == "netcdf":
+            io.require_xarray()
+            io.netcdf_engine()
+        elif format == "parquet":
+            io.parquet_engine()
+    except ImportError as error:
+        raise CommandError(f"--format {format}: {error}", 2) from None
 
 
 def _table(frame, columns) -> str:
@@ -220,13 +459,104 @@ def _table(frame, columns) -> str:
                                                                 for _, _, spec in columns])
 
 
+def _sweep(args) -> int:
+    from .scenario import sweep_file
+
+    sweep = sweep_file.load(args.file)
+    out = _output_directory(args, args.file, sweep.output.directory, sweep.name, "sweep file")
+    _check_target(out)
+    count = len(sweep.points)
+    log.info("%s: %d points x %d cases", args.file, count, len(sweep.cases))
+    with _imap(args.jobs, count) as imap, _progress(args, count, sweep.name, unit="pt") as bar:
+        try:
+            result = sweep_file.run(sweep, imap=imap, on_point=lambda index: bar.update())
+        except SimulationError as error:
+            raise CommandError(f"{args.file}: a simulation stopped at t = {error.time_reached:.9g} s: {error}", 1) \
+                from None
+        except InvalidParameterError as error:
+            raise CommandError(f"{args.file}: {error}", 2) from None
+    frame = result.frame()
+    print(f"{args.file}: {sweep.title}" if sweep.title else str(args.file))
+    shown = list(sweep.axes) + ["case"] + ([result.value] if result.value else [])
+    print(frame[shown].to_string(index=False, max_rows=60, float_format=lambda v: f"{v:.6g}"))
+    first = sweep.scenarios[0].cases[0]
+
+    def write(directory: Path) -> List[Path]:
+        return result.write(directory) + _metadata(
+            args, directory, rigs={f"{case.name} at point 0": case.build() for case in sweep.scenarios[0].cases},
+            solver_options=dataclasses.asdict(first.solver),
+            extra={"sweep": {"file": str(args.file), "grid": {k: list(v) for k, v in sweep.axes.items()},
+                             "cases": list(sweep.cases), "points": count, "jobs": args.jobs}})
+
+    written = _write(out, write)
+    print(f"wrote {out}: {', '.join(str(p) for p in written)}")
+    return 0
+
+
+# ----------------------------------------------------------------------------------------------- scenarios
+def _packaged():
+    """name -> the packaged example files (python/frictionsim/scenarios/*.toml)."""
+    folder = resources.files("frictionsim").joinpath("scenarios")
+    return {entry.name[:-5]: entry for entry in sorted(folder.iterdir(), key=lambda e: e.name)
+            if entry.name.endswith(".toml")}
+
+
+def _scenarios_list(args) -> int:
+    import tomllib
+
+    for name, entry in _packaged().items():
+        text = entry.read_text(encoding="utf-8")
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError:  # pragma: no cover - package data is tested
+            data = {}
+        kind = "sweep" if "grid" in data else "scenario"
+        print(f"{name:34s} {kind:8s} {data.get('title', '')}")
+    print("\nfrictionsim scenarios copy NAME [DEST]   copies one here (or to DEST) to edit and run")
+    return 0
+
+
+def _scenarios_copy(args) -> int:
+    examples = _packaged()
+    name = args.name[:-5] if args.name.endswith(".toml") else args.name
+    if name not in examples:
+        raise CommandError(f"scenarios copy: no packaged example {args.name!r} (examples: {', '.join(examples)})", 2)
+    dest = Path(args.dest)
+    if args.dest.endswith(("/", os.sep)) and not dest.is_dir():
+        raise CommandError(f"scenarios copy: {args.dest} is not a directory", 2)
+    target = dest / f"{name}.toml" if dest.is_dir() else dest
+    if not target.parent.is_dir():
+        raise CommandError(f"scenarios copy: {target.parent} is not a directory", 2)
+    data = examples[name].read_bytes()
+    try:
+        # O_EXCL: never replaces a file, and never follows a symbolic link out of DEST (it counts as existing)
+        descriptor = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    except FileExistsError:
+        raise CommandError(f"scenarios copy: {target} exists; not overwritten (remove it or give another DEST)",
+                           1) from None
+    except OSError as error:
+        raise CommandError(f"scenarios copy: cannot write {target} ({error.strerror or error})", 1) from None
+    try:
+        with os.fdopen(descriptor, "wb") as file:
+            file.write(data)
+    except BaseException:
+        target.unlink(missing_ok=True)
+        raise
+    kind = "sweep" if b"[grid]" in data else "run"
+    print(f"wrote {target}; run it with: frictionsim {kind} {shlex.quote(str(target))}")
+    return 0
+
+
+# ------------------------------------------------------------------------------------------------ demo, fits
 def _demo(args) -> int:
     from . import demo
 
     _check_target(args.out)
-    result = demo.compute(quick=args.quick)
+    with _progress(args, len(demo.STAGES), "demo", unit="part") as bar:
+        result = demo.compute(quick=args.quick, progress=lambda stage: (bar.set_postfix_str(stage), bar.update()))
     print(result.report())
-    written = _write(args.out, result.write)
+    written = _write(args.out, lambda directory: result.write(directory) + _metadata(
+        args, directory, extra={"quick": args.quick, "elapsed_s": result.elapsed}))
     print(f"\nwrote {len(written)} files into {args.out}/: {', '.join(str(p) for p in written)}")
     return 0
 
@@ -241,11 +571,127 @@ def _fit_table5(args) -> int:
     def write(directory: Path) -> List[Path]:
         path = directory / "table5_refit.csv"
         refit.to_csv(path, index=False, float_format="%.10g")
-        return [path, demo.write_fig11(directory)]
+        return [path, demo.write_fig11(directory)] + _metadata(args, directory, extra={"data": "paper 000 Table 4"})
 
     written = _write(args.out, write)
     print(f"wrote {args.out}: {', '.join(str(p) for p in written)}")
     return 0
+
+
+def _fit(args) -> int:
+    import numpy as np
+
+    from .fit import LAW_PARAMETERS, identify
+
+    out = args.out if args.out is not None else Path("out") / f"fit_{args.data.stem}"
+    _check_target(out)
+    laws = sorted(LAW_PARAMETERS)
+    if args.law.lower().replace("-", "_") not in {k.lower() for k in laws}:
+        raise CommandError(f"--law must be one of {', '.join(laws)} (got {args.law!r})", 2)
+    if args.normal_force is not None and not (math.isfinite(args.normal_force) and args.normal_force > 0):
+        raise CommandError(f"--normal-force must be positive and finite (got {args.normal_force})", 2)
+    columns = {"time": args.time, "velocity": args.velocity, "force": args.force}
+    if args.normal_force is None:
+        columns["normal"] = args.normal
+    record = _read_record(args.data, columns)
+    normal = record["normal"] if args.normal_force is None else args.normal_force
+    try:
+        result = identify(args.law, record["time"], record["velocity"], record["force"], normal, method=args.method,
+                          initial_guess=args.guess or None, fixed=args.fixed or None)
+    except InvalidParameterError as error:
+        raise CommandError(f"{args.data}: {error}", 2) from None
+    print(f"{args.data}: {len(record['time'])} samples over {record['time'][-1] - record['time'][0]:g} s")
+    print(result.summary())
+    table = result.to_pandas()
+
+    def write(directory: Path) -> List[Path]:
+        import pandas as pd
+
+        paths = [directory / "fit.csv", directory / "fit_record.csv"]
+        table.to_csv(paths[0], float_format="%.10g")
+        pd.DataFrame({"t": result.t, "relative_velocity": np.interp(result.t, record["time"], record["velocity"]),
+                      "measured": result.measured, "model": result.model,
+                      "residual": result.residuals}).to_csv(paths[1], index=False, float_format="%.10g")
+        paths.append(_fit_figure(result, record, directory / "fit.png", title=args.data.name))
+        return paths + _metadata(args, directory, rigs=[result.rig] if result.rig is not None else [],
+                                 stats={"n_evaluations": result.n_evaluations, "n_failed": result.n_failed,
+                                        "elapsed_s": result.elapsed},
+                                 extra={"data": str(args.data), "law": repr(result.law), "method": result.method,
+                                        "success": result.success, "message": result.message,
+                                        "rms_residual_N": result.rms_residual, "r_squared": result.r_squared})
+
+    written = _write(out, write)
+    print(f"wrote {out}: {', '.join(str(p) for p in written)}")
+    return 0 if result.success else 1
+
+
+def _assignments(spec: str) -> Dict[str, float]:
+    """--guess / --fixed: NAME=VALUE,... as a dict of floats."""
+    out = {}
+    for part in (p.strip() for p in spec.split(",") if p.strip()):
+        name, equals, value = part.partition("=")
+        try:
+            out[name.strip()] = float(value)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{part!r}: expected NAME=VALUE with a number") from None
+        if not equals or not name.strip():
+            raise argparse.ArgumentTypeError(f"{part!r}: expected NAME=VALUE")
+    return out
+
+
+def _read_record(path: Path, columns: Dict[str, str]) -> Dict[str, Any]:
+    """The named columns of a CSV record as float arrays; an error names the file, the column and the line."""
+    import numpy as np
+    import pandas as pd
+
+    try:
+        frame = pd.read_csv(path, comment="#", skipinitialspace=True)
+    except FileNotFoundError:
+        raise CommandError(f"{path}: no such file", 2) from None
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as error:
+        raise CommandError(f"{path}: cannot read the record as CSV ({error})", 2) from None
+    frame.columns = [str(c).strip() for c in frame.columns]
+    options = {"time": "--time", "velocity": "--velocity", "force": "--force", "normal": "--normal"}
+    for role, name in columns.items():
+        if name not in frame.columns:
+            hint = " or give --normal-force" if role == "normal" else ""
+            raise CommandError(f"{path}: no column {name!r} (columns: {', '.join(frame.columns)}); name it with "
+                               f"{options[role]}{hint}", 2)
+    out = {}
+    for role, name in columns.items():
+        values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            row = int(bad[0])
+            raise CommandError(f"{path}: column {name!r}, data row {row + 1}: must be a finite number (got "
+                               f"{str(frame[name].iloc[row])!r})", 2)
+        out[role] = values
+    if len(frame) < 3:
+        raise CommandError(f"{path}: needs at least 3 samples (got {len(frame)})", 2)
+    return out
+
+
+def _fit_figure(result, record, path: Path, *, title: str) -> Path:
+    """Measured and fitted force over time, and against the relative velocity (the hysteresis loops)."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from .plots import save
+
+    figure = Figure(figsize=(11.0, 4.5), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    velocity = np.interp(result.t, record["time"], record["velocity"])
+    result.plot(ax=left, color="tab:red", linewidth=1.2)
+    right.plot(velocity, result.measured, ".", markersize=2, color="grey", label="measured")
+    right.plot(velocity, result.model, color="tab:red", linewidth=1.0, label=f"{result.law_name} fit")
+    right.set_xlabel("relative velocity [m/s]")
+    right.set_ylabel("friction force [N]")
+    right.legend(fontsize=8)
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(f"{title}: {result.law_name}, rms residual {result.rms_residual:.4g} N, "
+                    f"R^2 = {result.r_squared:.5f}", fontsize=10)
+    return save(figure, path)
 
 
 #: torque-drag's default string: 5" drill pipe (OD 127 mm, ID 108.6 mm) over 150 m of 6 1/2" x 2 13/16" collars
@@ -295,6 +741,59 @@ def _string_sections(spec: str, depth: Optional[float], survey_depth: float):
     return sections, depth
 
 
+# ----------------------------------------------------------------------------------------------- torque-drag
+@dataclasses.dataclass(frozen=True)
+class _Tool:
+    """A --oscillator entry: its depth (m MD at the full bit depth, or ``above_bit`` metres above the bit), force
+    amplitude [N] and frequency [Hz]."""
+
+    depth: Optional[float]
+    above_bit: Optional[float]
+    force: float
+    frequency: float
+
+    def height(self, bit_depth: float) -> float:
+        """Metres above the bit when the bit is at ``bit_depth`` (the full string)."""
+        return self.above_bit if self.above_bit is not None else bit_depth - self.depth
+
+
+def _oscillators(spec: str) -> List[_Tool]:
+    """--oscillator MD:FORCE:FREQ[,...]; MD may be 'bit-H' (H metres above the bit)."""
+    tools = []
+    for index, part in enumerate(p.strip() for p in spec.split(",")):
+        fields = part.split(":")
+        if len(fields) != 3:
+            raise argparse.ArgumentTypeError(f"tool {index} {part!r}: expected MD:FORCE:FREQ (m or bit-H, N, Hz)")
+        where = fields[0].strip()
+        try:
+            above = float(where[4:]) if where.startswith("bit-") else None
+            depth = None if above is not None else float(where)
+            force, frequency = float(fields[1]), float(fields[2])
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"tool {index} {part!r}: MD (or bit-H), FORCE and FREQ must be "
+                                             "numbers") from None
+        for name, value, ok in (("MD", depth, depth is None or (math.isfinite(depth) and depth >= 0)),
+                                ("H", above, above is None or (math.isfinite(above) and above >= 0)),
+                                ("FORCE", force, math.isfinite(force) and force >= 0),
+                                ("FREQ", frequency, math.isfinite(frequency) and frequency > 0)):
+            if not ok:
+                rule = "positive" if name == "FREQ" else "non-negative"
+                raise argparse.ArgumentTypeError(f"tool {index} {part!r}: {name} must be {rule} and finite "
+                                                 f"(got {value:g})")
+        tools.append(_Tool(depth, above, force, frequency))
+    return tools
+
+
+def _placed(tools: Sequence[_Tool], full_depth: float, bit_depth: float) -> List[Any]:
+    """The HydraulicOscillators with the bit at ``bit_depth``: each keeps its height above the bit; those that
+    would be above the surface are left out (the string is not that long yet)."""
+    from . import HydraulicOscillator
+
+    return [HydraulicOscillator(measured_depth=bit_depth - tool.height(full_depth), force_amplitude=tool.force,
+                                frequency=tool.frequency)
+            for tool in tools if bit_depth - tool.height(full_depth) >= 0.0]
+
+
 def _torque_drag(args) -> int:
     import pandas as pd
 
@@ -309,22 +808,37 @@ def _torque_drag(args) -> int:
         for value in values if isinstance(values, list) else [values]:
             if value is not None and not math.isfinite(value):
                 raise CommandError(f"--{name.replace('_', '-')} must be finite (got {value})", 2)
+    if args.operation not in wells.OPERATIONS:
+        raise CommandError(f"--operation must be one of {', '.join(wells.OPERATIONS)} (got {args.operation!r})", 2)
+    if args.place and not args.wob > 0.0:
+        raise CommandError("--place needs --wob > 0: the tool is placed for the most weight on bit while sliding at "
+                           "the hook load that puts --wob on the bit without it", 2)
+    if args.lubricant is not None and args.model != "table5":
+        raise CommandError("--lubricant is Table 5's row: give it with --model table5", 2)
     try:
         survey = wells.read_survey(args.survey, depth_unit=args.depth_unit, angle_unit=args.angle_unit)
     except InvalidParameterError as error:
         raise CommandError(str(error), 2) from None
     sections, depth = _string_sections(args.string, args.depth, float(survey.measured_depth[-1]))
+    tools = args.oscillator or []
+    for index, tool in enumerate(tools):
+        if not 0.0 <= tool.height(depth) <= depth:
+            raise CommandError(f"--oscillator: tool {index} at "
+                               f"{'bit-%g' % tool.above_bit if tool.above_bit is not None else '%g m' % tool.depth} "
+                               f"is outside the string (0 to {depth:g} m MD)", 2)
     conditions = dict(mud_density=args.mud_density, casing_shoe_depth=args.casing_shoe,
                       weight_on_bit=args.wob, bit_torque=args.bit_torque)
+    estimate = {"model": args.model} | ({"lubricant": args.lubricant} if args.lubricant else {})
     operations = list(wells.BROOMSTICK_OPERATIONS)
     if args.wob > 0.0:
         operations += ["sliding_drilling", "rotary_drilling"]
     tables, summary = [], []
+    vibrated = zone = zone_summary = placements = None
     try:
         string = DrillString(sections)
         model = wells.soft_string(survey, string, element_length=args.element_length)
         for mu in args.mu:
-            friction = dict(open_hole_friction=mu, cased_hole_friction=mu if args.cased_mu is None else args.cased_mu)
+            friction = _friction(args, mu)
             for op in operations:
                 result = model.run(op, **conditions, **friction)
                 table = wells.node_table(result)
@@ -341,12 +855,28 @@ def _torque_drag(args) -> int:
             broom_conditions["cased_hole_friction"] = args.cased_mu
         chart = wells.broomstick(survey, string, args.mu, depth_step=args.depth_step,
                                  element_length=args.element_length, **broom_conditions)
+        if tools:
+            vibrated = _vibrated_broomstick(args, survey, string, chart, tools, depth, conditions, estimate)
+            zone, zone_summary = _zone_of_influence(args, model, tools, depth, conditions, estimate)
+        if args.place:
+            placements = _placements(args, model, tools, conditions, estimate)
     except InvalidParameterError as error:
         raise CommandError(f"{args.survey}: {error}", 2) from None
     summary_frame = pd.DataFrame(summary)
     print(f"{args.survey}: {len(survey)} stations to MD {survey.measured_depth[-1]:g} m; bit at {depth:g} m, "
           f"{model.elements} elements of {model.element_length:.4g} m")
     print(summary_frame.to_string(index=False, float_format=lambda v: f"{v:.6g}"))
+    if zone_summary is not None:
+        print(f"\nhydraulic oscillators, {args.operation} with the bit at {depth:g} m ({args.model}): "
+              f"zone of influence and changes at the surface")
+        print(zone_summary.to_string(index=False, float_format=lambda v: f"{v:.6g}"))
+    if placements is not None:
+        print(f"\nplacement of one tool while sliding at the hook load that puts {args.wob / 1e3:g} kN on the bit "
+              "without it")
+        print(pd.DataFrame([{"friction_factor": mu, "best_depth_m": p.depths[0], "weight_on_bit_kN":
+                             p.weight_on_bit / 1e3, "without_kN": p.weight_on_bit_without / 1e3,
+                             "gain_kN": p.gain / 1e3} for mu, p in placements.items()]).to_string(
+            index=False, float_format=lambda v: f"{v:.6g}"))
 
     def write(directory: Path) -> List[Path]:
         paths = [directory / "torque_drag.csv", directory / "broomstick.csv", directory / "trajectory.csv"]
@@ -357,27 +887,182 @@ def _torque_drag(args) -> int:
                                 directory / "broomstick.png"))
         paths.append(plots.save(plots.well_path_figure(survey, title=str(args.survey.name)),
                                 directory / "well_path.png"))
-        return paths
+        if vibrated is not None:
+            for name, frame in (("oscillator_broomstick.csv", vibrated), ("oscillator_zone.csv", zone),
+                                ("oscillator_summary.csv", zone_summary)):
+                paths.append(directory / name)
+                frame.to_csv(paths[-1], index=False, float_format="%.10g")
+            paths.append(plots.save(_vibrated_figure(vibrated, zone, title=args.survey.name),
+                                    directory / "oscillator_broomstick.png"))
+        if placements is not None:
+            rows = [pd.DataFrame({"friction_factor": mu, "tool_depth": p.scan_depths,
+                                  "weight_on_bit": p.scan_weight_on_bit,
+                                  "weight_on_bit_without": p.weight_on_bit_without,
+                                  "hook_load": p.hook_load, "best_depth": p.depths[0],
+                                  "best_weight_on_bit": p.weight_on_bit}) for mu, p in placements.items()]
+            paths.append(directory / "placement.csv")
+            pd.concat(rows, ignore_index=True).to_csv(paths[-1], index=False, float_format="%.10g")
+            paths.append(plots.save(_placement_figure(placements, title=args.survey.name), directory / "placement.png"))
+        return paths + _metadata(args, directory, extra={
+            "survey": str(args.survey), "string": args.string, "bit_depth_m": depth, "friction_factors": args.mu,
+            "conditions": conditions, "oscillators": [dataclasses.asdict(t) for t in tools], "estimate": estimate})
 
     written = _write(out, write)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
 
 
-def _output_directory(args, scenario) -> Path:
-    """--out, else the scenario's output.directory confined to the file's folder, else out/<stem>."""
+def _friction(args, mu: float) -> Dict[str, float]:
+    return dict(open_hole_friction=mu, cased_hole_friction=mu if args.cased_mu is None else args.cased_mu)
+
+
+def _vibrated_broomstick(args, survey, string, chart, tools, full_depth, conditions, estimate):
+    """Hook load and surface torque against bit depth with and without the tools, at the broomstick's depths and
+    operations (plus sliding without weight on bit, where a tool matters most)."""
+    import pandas as pd
+
+    from . import wells
+
+    operations = list(dict.fromkeys(list(chart.operations) + ["sliding_drilling"]
+                                    + (["rotary_drilling"] if args.wob > 0.0 else [])))
+    rows = []
+    for bit_depth in sorted(set(chart.frame["bit_depth"])):
+        placed = _placed(tools, full_depth, bit_depth)
+        model = wells.soft_string(survey, wells.string_to_depth(string, bit_depth), element_length=args.element_length)
+        for mu in args.mu:
+            for op in operations:
+                r = model.oscillators(op, placed, **conditions, **_friction(args, mu), **estimate)
+                rows.append({"bit_depth": bit_depth, "friction_factor": mu, "operation": op, "tools": len(placed),
+                             "hook_load_plain": r.plain.hook_load, "hook_load_tool": r.vibrated.hook_load,
+                             "surface_torque_plain": r.plain.surface_torque,
+                             "surface_torque_tool": r.vibrated.surface_torque,
+                             "zone_length": r.zone_length})
+    return pd.DataFrame(rows)
+
+
+def _zone_of_influence(args, model, tools, depth, conditions, estimate):
+    """Per element at the full depth, for --operation and each friction factor: the tools' vibration amplitude,
+    the friction factors and reduction, in the zone or not; and one summary row per friction factor."""
+    import numpy as np
+    import pandas as pd
+
+    placed = _placed(tools, depth, depth)
+    nodes = np.asarray(model.node_depths)
+    top, bottom = nodes[:-1], nodes[1:]
+    frames, summary = [], []
+    for mu in args.mu:
+        r = model.oscillators(args.operation, placed, **conditions, **_friction(args, mu), **estimate)
+        reduction = np.asarray(r.reduction)
+        in_zone = (top >= r.zone_top - 1e-9) & (bottom <= r.zone_bottom + 1e-9) & (r.zone_length > 0.0)
+        frames.append(pd.DataFrame({"friction_factor": mu, "element": np.arange(len(reduction)),
+                                    "top_depth": top, "bottom_depth": bottom,
+                                    "vibration_amplitude": r.vibration_amplitude, "axial_factor": r.axial_factor,
+                                    "circumferential_factor": r.circumferential_factor, "reduction": reduction,
+                                    "in_zone": in_zone & (reduction > 0.0)}))
+        summary.append({"friction_factor": mu, "zone_top_m": r.zone_top, "zone_bottom_m": r.zone_bottom,
+                        "zone_length_m": r.zone_length, "hook_load_kN": r.plain.hook_load / 1e3,
+                        "hook_load_tool_kN": r.vibrated.hook_load / 1e3,
+                        "hook_load_change_kN": r.hook_load_change / 1e3,
+                        "surface_torque_change_kNm": r.surface_torque_change / 1e3,
+                        "weight_on_bit_kN": args.wob / 1e3, "converged": bool(r.converged)})
+    return pd.concat(frames, ignore_index=True), pd.DataFrame(summary)
+
+
+def _placements(args, model, tools, conditions, estimate):
+    """friction factor -> wells.Placement of one tool while sliding at the hook load that puts --wob on the bit."""
+    from . import wells
+
+    force, frequency = (tools[0].force, tools[0].frequency) if tools else (50e3, 18.0)
+    out = {}
+    for mu in args.mu:
+        friction = _friction(args, mu)
+        hook_load = model.run("sliding_drilling", **{**conditions, **friction}).hook_load
+        if hook_load < 0.0:
+            log.warning("mu = %g: sliding %g kN onto the bit needs a hook load of %.4g kN: the string would have to "
+                        "be pushed from the surface", mu, args.wob / 1e3, hook_load / 1e3)
+        rest = {k: v for k, v in conditions.items() if k != "weight_on_bit"}
+        out[mu] = wells.place_oscillators(_Estimated(model, estimate), hook_load, force_amplitude=force,
+                                          frequency=frequency, **rest, **friction)
+    return out
+
+
+class _Estimated:
+    """A SoftString whose placement objective takes the estimate's settings: place_oscillators' first parameter is
+    called ``model``, so its ``**keywords`` cannot carry the estimate's ``model`` keyword."""
+
+    def __init__(self, soft_string, estimate: Dict[str, str]) -> None:
+        self._soft_string, self._estimate = soft_string, estimate
+
+    def __getattr__(self, name: str):
+        return getattr(self._soft_string, name)
+
+    def sliding_weight_on_bit(self, hook_load, tools, **keywords):
+        return self._soft_string.sliding_weight_on_bit(hook_load, tools, **keywords, **self._estimate)
+
+
+def _vibrated_figure(frame, zone, *, title: str):
+    """Left: hook load against bit depth while sliding (at --wob), with and without the tools, and the pick-up load
+    for reference, per friction factor; right: the
+    friction reduction along the string at the full depth (the zone of influence)."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(12.0, 6.0), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    styles = ["-", "--", "-.", ":"]
+    for k, (mu, part) in enumerate(frame[frame["operation"] == "trip_out"].groupby("friction_factor")):
+        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="tab:red", linestyle=styles[k % 4],
+                  linewidth=0.9, label=f"pick-up (trip_out), mu = {mu:g}")
+    for k, (mu, part) in enumerate(frame[frame["operation"] == "sliding_drilling"].groupby("friction_factor")):
+        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="grey", linestyle=styles[k % 4],
+                  linewidth=0.9, label=f"sliding, mu = {mu:g}, no tool")
+        left.plot(part["hook_load_tool"] / 1e3, part["bit_depth"], color="tab:green", linestyle=styles[k % 4],
+                  linewidth=1.3, label=f"sliding, mu = {mu:g}, with the tools")
+    left.invert_yaxis()
+    left.set_xlabel("hook load [kN]")
+    left.set_ylabel("bit depth, measured [m]")
+    left.legend(fontsize=7)
+    left.set_title("broomstick with hydraulic oscillators (each at its height above the bit)", fontsize=9)
+    for k, (mu, part) in enumerate(zone.groupby("friction_factor")):
+        middle = 0.5 * (part["top_depth"] + part["bottom_depth"])
+        right.plot(100.0 * part["reduction"], middle, linestyle=styles[k % 4], label=f"mu = {mu:g}")
+    right.invert_yaxis()
+    right.set_xlabel("friction reduction [%]")
+    right.set_ylabel("measured depth [m]")
+    right.legend(fontsize=7)
+    right.set_title("zone of influence at the full depth", fontsize=9)
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(str(title), fontsize=10)
+    return figure
+
+
+def _placement_figure(placements, *, title: str):
+    """The weight on bit against the tool's depth, one curve per friction factor."""
+    from matplotlib.figure import Figure
+
+    from .plots import placement_axes
+
+    figure = Figure(figsize=(7.0, 4.0 * len(placements)), layout="constrained")
+    axes = figure.subplots(len(placements), 1, squeeze=False)[:, 0]
+    for ax, (mu, placement) in zip(axes, placements.items()):
+        placement_axes(placement, ax=ax, title=f"{title}, mu = {mu:g}")
+    return figure
+
+
+def _output_directory(args, file: Path, directory: Optional[str], stem: str, what: str = "scenario") -> Path:
+    """--out, else the file's output.directory confined to the file's folder, else out/<stem>."""
     if args.out is not None:
         return args.out
-    if scenario.output.directory is None:
-        return Path("out") / scenario.name
-    base = Path(args.scenario).absolute().parent
-    given = Path(scenario.output.directory)
+    if directory is None:
+        return Path("out") / stem
+    base = Path(file).absolute().parent
+    given = Path(directory)
     target = base / given
     if args.allow_outside:
         return target
-    where = f"{args.scenario}: output.directory"
+    where = f"{file}: output.directory"
     if given.is_absolute():
-        raise CommandError(f"{where}: must be relative to the scenario's folder (got the absolute path {given}); "
+        raise CommandError(f"{where}: must be relative to the {what}'s folder (got the absolute path {given}); "
                            f"pass --out or --allow-outside to write elsewhere", 2)
     # resolve() follows '..' and symbolic links: what stays inside the folder after both is confined
     try:
@@ -385,7 +1070,7 @@ def _output_directory(args, scenario) -> Path:
     except OSError as error:
         raise CommandError(f"{where}: cannot resolve {given} ({error.strerror or error})", 2) from None
     if not inside:
-        raise CommandError(f"{where}: {given} leads out of the scenario's folder {base} (through '..' or a symbolic "
+        raise CommandError(f"{where}: {given} leads out of the {what}'s folder {base} (through '..' or a symbolic "
                            f"link); pass --out or --allow-outside to write elsewhere", 2)
     return target
 

@@ -50,7 +50,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 from importlib import resources
-from typing import Dict, List, Sequence, Tuple, Union
+from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -59,8 +59,8 @@ from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_com
 from .scenario import Scenario, ScenarioRun, loads, run
 from .torsional import FIG7 as PAPER001_FIG7
 
-__all__ = ["BUILTIN_SCENARIOS", "Demo", "FieldString", "HorizontalWell", "Paper001", "builtin_scenario", "compute",
-           "field_rig", "field_string", "format_table", "horizontal_well", "paper001", "table5_refit"]
+__all__ = ["BUILTIN_SCENARIOS", "STAGES", "Demo", "FieldString", "HorizontalWell", "Paper001", "builtin_scenario",
+           "compute", "field_rig", "field_string", "format_table", "horizontal_well", "paper001", "table5_refit"]
 
 #: The built-in scenarios: package data (python/frictionsim/scenarios/), linked from examples/scenarios/.
 BUILTIN_SCENARIOS = ("fig7_dry_coulomb_vs_dahl", "fig7_obm", "fig7_torsional")
@@ -239,8 +239,8 @@ class Paper001:
             format_table(summary, [c for c in analysis.summary_columns(summary) if c[0] not in ("steps",)]),
             "   " + analysis.summary_note,
             "",
-            f"5. Friction laws at the Fig. 7 point (frictionsim.torsional.fig7_laws; chosen sets, the paper prints "
-            f"none), against paper 001 Fig. 7;",
+            "5. Friction laws at the Fig. 7 point (frictionsim.torsional.fig7_laws; chosen sets, the paper prints "
+            "none), against paper 001 Fig. 7;",
             f"   f_n = sqrt(k2/J2)/2 pi = {float(self.laws['natural_frequency'].iloc[0]):.3f} Hz: laws of speed "
             "alone stay below it, eq 6's negative acceleration coefficient lifts f above it",
             format_table(self.law_table(), LAW_COLUMNS),
@@ -406,8 +406,8 @@ class HorizontalWell:
         for mu in WELL_FRICTION_FACTORS:
             _, trip = self.chart.hook_loads("trip_in", mu)
             row = deepest[deepest["friction_factor"] == mu].iloc[0]
-            rows.append(f"   mu = {mu:g}: tripping in {trip[-1] / 1e3:8.1f} kN; sliding in {row['hook_load_plain'] / 1e3:8.1f} "
-                        f"kN, with the tool {row['hook_load_tool'] / 1e3:8.1f} kN")
+            rows.append(f"   mu = {mu:g}: tripping in {trip[-1] / 1e3:8.1f} kN; sliding in "
+                        f"{row['hook_load_plain'] / 1e3:8.1f} kN, with the tool {row['hook_load_tool'] / 1e3:8.1f} kN")
         return [
             f"horizontal well (issue 14): examples/surveys/horizontal_3km.csv, {self.string_length:g} m string, "
             f"soft-string torque and drag; a {WELL_TOOL_FORCE / 1e3:g} kN hydraulic oscillator "
@@ -565,17 +565,31 @@ def write_fig11(directory: Union[str, Path]) -> Path:
     return plots.save(figure, Path(directory) / "fig11_power_law.png")
 
 
-def compute(quick: bool = False) -> Demo:
+#: The demo's parts, in the order :func:`compute` runs them (its ``progress`` callback gets each name when done).
+STAGES = ("Fig. 7 cases", "friction reduction", "amplitude sweep", "Table 5 refit", "paper 001", "field string",
+          "horizontal well")
+
+
+def compute(quick: bool = False, progress: Optional[Callable[[str], None]] = None) -> Demo:
     """Run every simulation and fit of the demo; writes nothing. ``quick`` halves the sweep and shrinks the
-    stick-slip map."""
+    stick-slip map. ``progress(stage)`` is called as each of :data:`STAGES` is done (the command line's progress
+    bar)."""
     import pandas as pd
 
+    done = progress if progress is not None else (lambda stage: None)
     start = time.perf_counter()
     fig7 = {subdir: run(builtin_scenario(name)) for subdir, name in FIG7.items()}
+    done(STAGES[0])
     reduction = pd.DataFrame([row for subdir, r in fig7.items() for row in _reduction_rows(subdir.split("_")[1], r)])
+    done(STAGES[1])
     sweep = _sweep(fig7["fig7_dry"], QUICK_SWEEP_RATIOS if quick else SWEEP_RATIOS)
+    done(STAGES[2])
     refit = table5_refit()
+    done(STAGES[3])
     torsional = paper001(quick)
+    done(STAGES[4])
     field = field_string(quick)
+    done(STAGES[5])
     well = horizontal_well(quick)
+    done(STAGES[6])
     return Demo(fig7, reduction, sweep, refit, torsional, field, well, quick, time.perf_counter() - start)

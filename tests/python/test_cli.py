@@ -1,5 +1,7 @@
 """The frictionsim command line, scenario files and plots (frictionsim.cli, .scenario, .demo, .plots)."""
 
+import io
+import json
 import math
 import os
 import re
@@ -43,7 +45,8 @@ def test_run_example_writes_expected_files(name, tmp_path, capsys):
     parsed = scenario.load(EXAMPLES / name)
     axial = any(case.rig.type == "axial" for case in parsed.cases)
     expected = {f"{case.name}.csv" for case in parsed.cases} | {"summary.csv", "scenario.toml",
-                                                                "friction_force.png", "hysteresis.png"}
+                                                                "friction_force.png", "hysteresis.png",
+                                                                "metadata.json"}
     if axial:
         expected.add("drive_force.png")
     assert set(_files(out)) == expected
@@ -134,7 +137,7 @@ def test_velocity_file_case(tmp_path):
         'analysis = { period = 0.05, transient = 0.1, cycles = 6 }\n')
     out = tmp_path / "out"
     assert main(["run", str(tmp_path / "s.toml"), "--out", str(out)]) == 0
-    assert set(_files(out)) == {"dahl.csv", "summary.csv", "friction_force.png", "hysteresis.png"}
+    assert set(_files(out)) == {"dahl.csv", "summary.csv", "friction_force.png", "hysteresis.png", "metadata.json"}
     rig = fs.KinematicRig(fs.Dahl(0.27, 4e4), relative_velocity=(t, v), normal_force=30.0)
     times = np.union1d(np.linspace(0, 0.5, 501), [0.1, 0.4])
     expected = fs.simulate(rig, 0.5, output_times=times).mean_over_cycles(period=0.05, transient=0.1, cycles=6)
@@ -164,7 +167,7 @@ BAD = [
     ("missing value", DRY.replace("mu = 0.41, tangential", "tangential"), "case[2].friction.mu",
      "missing required value"),
     ("missing t_end", DRY.replace("t_end = 2.0 ", "# t_end"), "solver.t_end", "missing required value"),
-    ("wrong type", DRY.replace("t_end = 2.0 ", 't_end = "2" '), "solver.t_end", "must be a number"),
+    ("wrong type", DRY.replace("t_end = 2.0 ", "t_end = [2.0] "), "solver.t_end", "must be a number"),  # "2": 2 s
     ("wrong type bool", DRY.replace("mass = 0.2 ", "mass = true "), "rig.mass", "must be a number"),
     ("negative mass", DRY.replace("mass = 0.2 ", "mass = -0.2 "), "rig.mass", "must be positive"),
     ("negative stiffness", DRY.replace("tangential_stiffness = 4.0e4", "tangential_stiffness = -4.0e4"),
@@ -267,7 +270,8 @@ def test_output_into_existing_directory_and_onto_a_file(tmp_path, capsys):
 def test_fit_table5_matches_printed_slopes(tmp_path, capsys):
     out = tmp_path / "out"
     assert main(["fit-table5", "--out", str(out)]) == 0
-    assert set(_files(out)) == {"table5_refit.csv", "fig11_power_law.png"}
+    assert set(_files(out)) == {"table5_refit.csv", "fig11_power_law.png", "metadata.json"}
+    assert json.loads((out / "metadata.json").read_text())["command"] == f"frictionsim fit-table5 --out {out}"
     refit = pd.read_csv(out / "table5_refit.csv").set_index("lubricant")
     for lubricant, slope in PRINTED_SLOPES.items():
         assert round(refit.loc[lubricant, "slope_refit"], 5) == slope
@@ -276,10 +280,20 @@ def test_fit_table5_matches_printed_slopes(tmp_path, capsys):
     assert "-0.36513" in stdout and "slope (printed)" in stdout and "obm" in stdout
 
 
-def test_demo_quick(tmp_path, capsys):
+class _Terminal(io.StringIO):
+    def isatty(self):
+        return True
+
+
+def test_demo_quick(tmp_path, capsys, monkeypatch):
     out = tmp_path / "out"
+    terminal = _Terminal()
+    monkeypatch.setattr(sys, "stderr", terminal)  # the progress bar shows on a terminal only
     assert main(["demo", "--quick", "--out", str(out)]) == 0
+    assert "demo:   0%|" in terminal.getvalue() and f"/{len(demo.STAGES)} [" in terminal.getvalue()
     files = set(_files(out))
+    record = json.loads((out / "metadata.json").read_text())
+    assert record["command"] == f"frictionsim demo --quick --out {out}" and record["extra"]["quick"] is True
     for name in ("fig7_friction_reduction.csv", "friction_reduction.csv", "friction_reduction.png",
                  "table5_refit.csv", "fig11_power_law.png", "fig7_dry/summary.csv", "fig7_dry/dahl.csv",
                  "fig7_dry/coulomb.csv", "fig7_dry/friction_force.png", "fig7_obm/friction_force.png",
@@ -397,7 +411,8 @@ def test_torque_drag_writes_node_table_broomstick_and_plots_into_out(tmp_path, c
     out = tmp_path / "td"
     survey_file = SURVEYS / "j_well.csv"
     assert main(["torque-drag", str(survey_file), "--mu", "0.2", "0.3", "--wob", "1e5", "--out", str(out)]) == 0
-    expected = {"torque_drag.csv", "broomstick.csv", "trajectory.csv", "broomstick.png", "well_path.png"}
+    expected = {"torque_drag.csv", "broomstick.csv", "trajectory.csv", "broomstick.png", "well_path.png",
+                "metadata.json"}
     assert set(_files(out)) == expected
     assert _files(tmp_path) == ["td"] + [f"td/{f}" for f in sorted(expected)]  # nothing outside --out
     for png in out.glob("*.png"):
