@@ -4,7 +4,8 @@ A C++17 engine (stick-slip located as events, exact restarts, Dormand-Prince 5(4
 friction laws and rigs of paper 000 (axial vibrating-sliding rig, shale on 45 steel), paper 001 (torsional rig),
 field-scale drill strings (StringRig on a DrillString of PipeSections, frictionsim.drillstring) and torque and drag
 along a well survey (Survey, SoftString, frictionsim.wells); Python adds
-fitting, signal processing, plots, sweeps and a command line. SI units throughout.
+fitting, signal processing, plots, sweeps and a command line. SI units throughout (values with units at the
+boundary: frictionsim.units).
 
     >>> import frictionsim as fs
     >>> rig = fs.AxialVibrationRig(friction=fs.Dahl(mu=0.41, tangential_stiffness=4e4))
@@ -38,6 +39,11 @@ from .errors import AccuracyWarning, BudgetExceededError, ChatteringError, Inval
 from .result import Event, Result
 from .simulation import METHODS, SOLVER_DEFAULTS, simulate
 from .sweeps import SweepResult, sweep
+from . import units
+
+#: Values with units at the boundary ("55 rpm", "25 klbf", pint quantities; pint from frictionsim[units]): every
+#: engine routine that takes a parameter table's keywords converts them to the table's SI unit.
+units.install()
 
 __version__ = "0.1.0"
 
@@ -77,6 +83,7 @@ __all__ = [
     "sweep",
     "SweepResult",
     "table5",
+    "units",
     "vibration_velocity_amplitude",
 ] + [_law.__name__ for _law in FRICTION_LAWS]
 

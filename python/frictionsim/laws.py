@@ -69,6 +69,7 @@ def parameters(source: Any, skip: Tuple[str, ...] = ("self", "friction")) -> Tup
 
 
 def _from_signature(source: Any) -> List[Parameter]:
+    source = inspect.unwrap(source)  # frictionsim.units wraps the engine's routines; the signature is the engine's
     if not inspect.isclass(source) and not _is_builtin(source):  # a Python function
         return [Parameter(p.name, None if p.default is p.empty else p.default, p.default is p.empty,
                           _kind_of(p.default, p.annotation))

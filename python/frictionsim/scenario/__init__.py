@@ -2,7 +2,9 @@
 
 One schema serves ``frictionsim run`` and the built-in demo (:mod:`frictionsim.demo`). A file holds defaults at the
 top level and any number of ``[[case]]`` tables; each case is one rig with one friction law, so a file can compare
-Coulomb and Dahl friction side by side. SI units throughout::
+Coulomb and Dahl friction side by side. SI units throughout; any number may instead be a string with its unit
+(``reference_speed = "55 rpm"``, ``weight_on_bit = "25 klbf"``, ``outer_diameter = "5 in"``, ``t_end = "2 min"``),
+converted to the key's SI unit when the file is read (:mod:`frictionsim.units`, needs ``frictionsim[units]``)::
 
     title = "Paper 000 Fig. 7(a)"
     [rig]                       # default rig of every case

@@ -1,5 +1,8 @@
 """Reading and validating scenario files (TOML, or a mapping as :func:`tomllib.loads` returns) into the specs of
 :mod:`frictionsim.scenario.specs`. What a rig type allows is asked of its kind (:mod:`frictionsim.scenario.rigs`).
+A number may be written as a string with its unit (``reference_speed = "55 rpm"``): it is converted to the key's SI
+unit, read off the engine's parameter table (the schema's own keys: ``_SCHEMA_UNITS``), by
+:func:`frictionsim.units.to_si`; a unit of the wrong kind is a ScenarioError naming the key and the dimension.
 """
 
 from __future__ import annotations
@@ -14,7 +17,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from .. import _core
+from .. import _core, units
 from ..errors import InvalidParameterError
 from ..simulation import METHODS
 from .rigs import RIG_KINDS, friction_types, plots_of
@@ -37,6 +40,10 @@ MAX_DESCRIPTION_CHARACTERS = 4000
 #: A velocity_file is read whole: larger ones (or /dev/zero) are refused before reading.
 MAX_DATA_FILE_BYTES = 256 * 2**20
 
+#: The SI units of the schema's own keys (the rig and friction keys take theirs from the engine's tables): a value
+#: may be written with a unit, e.g. t_end = "2 min".
+_SCHEMA_UNITS = {"t_end": "s", "timeout": "s", "output_step": "s", "transient": "s", "period": "s",
+                 "stick_speed": "rad/s", "surface_speeds": "rad/s", "weights_on_bit": "N", "plot_window": "s"}
 _SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "timeout": float, "output_points": int,
                 "output_step": float}
 _OUTPUT_KEYS = {"directory": str, "tables": list, "plots": list, "plot_window": list}
@@ -114,6 +121,18 @@ class _Parser:
             wanted = {bool: "a boolean (true or false)", str: "a string", list: "an array", dict: "a table"}[kind]
             raise self.error(path, f"must be {wanted} (got {type_name(value)} {value!r})")
         return value
+
+    def measure(self, value: Any, unit: Optional[str], path: str) -> float:
+        """A number (SI), or where the key has a ``unit``, a string with a unit ("55 rpm") converted to it."""
+        if unit is not None and isinstance(value, str):
+            try:
+                value = units.to_si(value, unit, path)
+            except InvalidParameterError as error:
+                raise self.error(path, str(error)[len(path) + 2:]) from None
+            except units.UnitsUnavailableError:
+                raise self.error(path, f"{value!r} has a unit, and reading units needs pint: pip install "
+                                       f"'frictionsim[units]'") from None
+        return self.value(value, float, path)
 
     def positive(self, value: float, path: str, *, allow_zero: bool = False) -> float:
         if not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
@@ -247,6 +266,7 @@ class _Parser:
         kind, type_path = self.type_of(merged, path, tuple(friction_types()))
         law = friction_types()[kind]
         parameters = {p.name: p for p in law.parameters}
+        law_units = units.units_of(law.make)
         params, paths = {}, {}
         for key, (value, key_path) in merged.items():
             if key == "type":
@@ -257,6 +277,8 @@ class _Parser:
             parameter = parameters[key]
             if parameter.kind is tuple:
                 params[key] = self.numbers(value, parameter.size, law.arrays.get(key, ""), key_path)
+            elif parameter.kind is float:
+                params[key] = self.measure(value, law_units.get(key), key_path)
             else:
                 params[key] = self.value(value, parameter.kind, key_path)
             paths[key] = key_path
@@ -281,7 +303,11 @@ class _Parser:
             if key not in kind.keys:
                 raise self.error(key_path, f"unknown key for {article(name)} {name} rig (allowed: type, "
                                            f"{', '.join(kind.keys)})")
-            params[key], paths[key] = self.value(value, kind.keys[key], key_path), key_path
+            if kind.keys[key] is float:
+                params[key] = self.measure(value, kind.units.get(key), key_path)
+            else:
+                params[key] = self.value(value, kind.keys[key], key_path)
+            paths[key] = key_path
         samples = kind.check(self, params, paths, path)
         return RigSpec(name, params, samples), paths
 
@@ -336,7 +362,11 @@ class _Parser:
         for key, (value, key_path) in merged.items():
             if key not in _SOLVER_KEYS:
                 raise self.error(key_path, f"unknown key (allowed: {', '.join(_SOLVER_KEYS)})")
-            values[key], paths[key] = self.value(value, _SOLVER_KEYS[key], key_path), key_path
+            if _SOLVER_KEYS[key] is float:
+                values[key] = self.measure(value, _SCHEMA_UNITS.get(key), key_path)
+            else:
+                values[key] = self.value(value, _SOLVER_KEYS[key], key_path)
+            paths[key] = key_path
         if "t_end" not in values:
             raise self.error(join(path, "t_end"), "missing required value (simulated time, s)")
         for key in ("t_end", "rtol", "atol", "output_step", "timeout"):
@@ -377,9 +407,13 @@ class _Parser:
             if key not in keys:
                 raise self.error(key_path, f"unknown key{kind.analysis.unknown_note(kind)} "
                                            f"(allowed: {', '.join(keys)})")
-            values[key], paths[key] = self.value(value, keys[key], key_path), key_path
+            if keys[key] is float:
+                values[key] = self.measure(value, _SCHEMA_UNITS.get(key), key_path)
+            else:
+                values[key] = self.value(value, keys[key], key_path)
+            paths[key] = key_path
             if keys[key] is list:  # an analysis's arrays are of numbers (a drill string's map grid)
-                values[key] = self.numbers(value, None, "", key_path)
+                values[key] = self.numbers(value, None, "", key_path, _SCHEMA_UNITS.get(key))
         if "stick_speed" in values:
             self.positive(values["stick_speed"], paths["stick_speed"])
         if "period" in values:
@@ -389,12 +423,13 @@ class _Parser:
         paths.setdefault("_section", path)
         return AnalysisSpec(**values), paths
 
-    def numbers(self, value: Any, size: Optional[int], names: str, path: str) -> Tuple[float, ...]:
-        """An array of ``size`` numbers (``names``: what they are, for the error)."""
+    def numbers(self, value: Any, size: Optional[int], names: str, path: str,
+                unit: Optional[str] = None) -> Tuple[float, ...]:
+        """An array of ``size`` numbers (``names``: what they are, for the error), each in ``unit`` if given."""
         values = self.value(value, list, path)
         if size is not None and len(values) != size:
             raise self.error(path, f"must be an array of {size} numbers {names} (got {len(values)} values)")
-        return tuple(self.value(x, float, f"{path}[{i + 1}]") for i, x in enumerate(values))
+        return tuple(self.measure(x, unit, f"{path}[{i + 1}]") for i, x in enumerate(values))
 
     def output(self, raw: Any, cases: Sequence[Case]) -> OutputSpec:
         if raw is None:
@@ -426,7 +461,8 @@ class _Parser:
             window = values["plot_window"]
             if len(window) != 2:
                 raise self.error("output.plot_window", f"must be [t_start, t_end] in s (got {window!r})")
-            window = tuple(self.value(x, float, f"output.plot_window[{i + 1}]") for i, x in enumerate(window))
+            window = tuple(self.measure(x, _SCHEMA_UNITS["plot_window"], f"output.plot_window[{i + 1}]")
+                           for i, x in enumerate(window))
             if not (math.isfinite(window[0]) and math.isfinite(window[1]) and 0 <= window[0] < window[1]):
                 raise self.error("output.plot_window", f"must satisfy 0 <= t_start < t_end (got {list(window)})")
             shortest = min(case.solver.t_end for case in cases)

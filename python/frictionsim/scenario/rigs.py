@@ -13,13 +13,14 @@ the rig kinds (the torsional rig's "hysteretic" and "fig7").
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .. import _core, laws
+from .. import _core, laws, units
 from ..errors import InvalidParameterError
 from ..torsional import fig7_friction
 from .analyses import CYCLE_MEAN, LIMIT_CYCLE, STICK_SLIP, Analysis
@@ -64,6 +65,11 @@ class RigKind:
     def keys(self) -> Dict[str, type]:
         """[rig] key -> value type, in the engine's order: its constructor's keyword parameters."""
         return {p.name: p.kind for p in laws.parameters(self.engine)}
+
+    @functools.cached_property
+    def units(self) -> Dict[str, str]:
+        """[rig] key -> its SI unit, from the engine's parameter table (a value may be written with a unit)."""
+        return units.units_of(self.engine)
 
     @functools.cached_property
     def defaults(self) -> Dict[str, Any]:
@@ -143,12 +149,16 @@ class Kinematic(RigKind):
     @functools.cached_property
     def harmonic_keys(self) -> Tuple[str, ...]:
         """The keys of the harmonic velocity: sliding_velocity, velocity_amplitude, frequency."""
-        return tuple(p.name for p in laws.parameters(self.engine.harmonic, ("friction", "normal_force",
-                                                                            "initial_state")))
+        harmonic = inspect.unwrap(self.engine.harmonic)  # the engine's own, under the wrapper taking units
+        return tuple(p.name for p in laws.parameters(harmonic, ("friction", "normal_force", "initial_state")))
 
     @functools.cached_property
     def keys(self) -> Dict[str, type]:
         return {"normal_force": float, **{key: float for key in self.harmonic_keys}, "velocity_file": str}
+
+    @functools.cached_property
+    def units(self) -> Dict[str, str]:
+        return units.units_of(self.engine, "harmonic")
 
     def describe(self, spec) -> str:
         return super().describe(spec) + (" with a velocity_file" if "velocity_file" in spec.params else "")
@@ -301,7 +311,8 @@ class DrillStringKind(RigKind):
         table = parser.table(value, path)
         names = [p.name for p in cls.parameters]
         parser.unknown(table, names, path)
-        numbers = {key: parser.value(v, float, join(path, key)) for key, v in table.items()}
+        table_units = units.units_of(cls)
+        numbers = {key: parser.measure(v, table_units[key], join(path, key)) for key, v in table.items()}
         try:
             cls(**numbers)
         except InvalidParameterError as error:
@@ -324,10 +335,13 @@ class DrillStringKind(RigKind):
         elif "weight_on_bit" in params:
             raise parser.error(paths["weight_on_bit"], "needs a bit (give rig.bit; without it the bit is off "
                                                        "bottom)")
-        for key, kind in (("contact_nodes", int), ("normal_forces", float)):
-            if key in params:
-                params[key] = tuple(parser.value(v, kind, f"{paths[key]}[{i + 1}]")
-                                    for i, v in enumerate(params[key]))
+        if "contact_nodes" in params:
+            params["contact_nodes"] = tuple(parser.value(v, int, f"{paths['contact_nodes']}[{i + 1}]")
+                                            for i, v in enumerate(params["contact_nodes"]))
+        if "normal_forces" in params:
+            params["normal_forces"] = tuple(parser.measure(v, self.units["normal_forces"],
+                                                           f"{paths['normal_forces']}[{i + 1}]")
+                                            for i, v in enumerate(params["normal_forces"]))
         return None
 
     def build(self, spec, friction):

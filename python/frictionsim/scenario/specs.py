@@ -1,5 +1,6 @@
 """The parsed form of a scenario: frozen dataclasses of SI values (see :mod:`frictionsim.scenario` for the
-schema). What depends on the rig type is asked of its :class:`~frictionsim.scenario.rigs.RigKind`."""
+schema; a value the file gives with a unit, ``"55 rpm"``, is converted by the parser with :mod:`frictionsim.units`).
+What depends on the rig type is asked of its :class:`~frictionsim.scenario.rigs.RigKind`."""
 
 from __future__ import annotations
 
