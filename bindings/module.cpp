@@ -56,6 +56,18 @@ py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwarg
 PYBIND11_MODULE(_core, m) {
     using namespace frictionsim::python;
     m.doc() = "frictionsim C++ engine: friction laws, rigs and the hybrid (stick-slip) integrator.";
+    // The project's version, from CMakeLists.txt (the one source; frictionsim.__version__ is this).
+#ifdef FRICTIONSIM_VERSION
+    m.attr("__version__") = FRICTIONSIM_VERSION;
+#else
+#error "FRICTIONSIM_VERSION is defined by bindings/CMakeLists.txt from the project's version"
+#endif
+    // False when built without SUNDIALS: Dormand-Prince only, simulate(method="cvode_*") is refused.
+#if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
+    m.attr("HAS_SUNDIALS") = true;
+#else
+    m.attr("HAS_SUNDIALS") = false;
+#endif
     m.def("_rebuild", [](const py::type& cls, const py::tuple& args, const py::dict& kwargs, const std::string& factory) {
         if (cls.attr("__module__").cast<std::string>() != "frictionsim._core")
             throw py::type_error("_rebuild: only frictionsim._core classes are rebuilt");

@@ -1,16 +1,60 @@
 // Running a rig variant from Python: the GIL is released for the whole integration, so simulations in threads
 // run in parallel (a Python callable signal re-acquires it per call). Ctrl-C is polled between steps (the engine's
 // SolverOptions::interrupt), so it stops any run within a fraction of a second as KeyboardInterrupt.
+// CVODE is compiled in only where the extension links frictionsim::sundials (FRICTIONSIM_SUNDIALS=1).
 #pragma once
 
 #include <memory>
+#include <string>
 #include <variant>
 
+#if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
 #include <frictionsim/simulate.hpp>
+#else
+#include <frictionsim/error.hpp>
+#include <frictionsim/solve/dormand_prince.hpp>
+#include <frictionsim/solve/options.hpp>
+#include <frictionsim/solve/simulate_with.hpp>
+#endif
 
 #include "common.hpp"
 
 namespace frictionsim::python {
+
+/// Whether this extension was built with SUNDIALS (CVODE BDF / Adams): frictionsim._core.HAS_SUNDIALS.
+#if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
+inline constexpr bool has_sundials = true;
+#else
+inline constexpr bool has_sundials = false;
+#endif
+
+/// simulate() on the integrators this extension has. Built without SUNDIALS, only Dormand-Prince is compiled
+/// in: `automatic` takes it for every law (stiff ones need more, smaller steps but keep their accuracy), and a
+/// CVODE method asked for by name is refused saying how to get it.
+template <class System>
+Result simulate_built_in(const System& system, double t_end, const SolverOptions& options, double t_start) {
+#if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
+    return simulate(system, t_end, options, t_start);
+#else
+    const bool cvode = options.method == Method::cvode_bdf || options.method == Method::cvode_adams;
+    if (cvode) {
+        throw InvalidParameter("method", std::string("simulate: method = ") + method_name(options.method) +
+                                             " needs SUNDIALS CVODE, and this frictionsim extension was built "
+                                             "without SUNDIALS (frictionsim._core.HAS_SUNDIALS is False): use "
+                                             "method = \"dormand_prince\", or install SUNDIALS (Debian: "
+                                             "libsundials-dev) and reinstall frictionsim from source (pip "
+                                             "install --no-binary frictionsim frictionsim, or pip install . "
+                                             "in a clone; -C cmake.define.FRICTIONSIM_SUNDIALS=ON makes "
+                                             "SUNDIALS required)");
+    }
+    if (options.method == Method::rosenbrock) {
+        throw InvalidParameter("method", "simulate: method = rosenbrock is not built into the Python extension");
+    }
+    SolverOptions resolved = options;
+    resolved.method = Method::dormand_prince;
+    return simulate_with<DormandPrince>(system, t_end, resolved, t_start);
+#endif
+}
 
 /// True when a Python signal handler raised (the error is then pending on this thread); checked with the GIL
 /// re-acquired. Only the main thread runs signal handlers: elsewhere this is always false.
@@ -28,8 +72,9 @@ std::shared_ptr<Result> simulate_variant(const RigVariant& rig, double t_end, co
         py::gil_scoped_release release;
         return std::visit(
             [&](const auto& system) {
-                resolve_callable_law_method(system, polled);  // CallableLaw(stiff=True): automatic is CVODE BDF
-                return std::make_shared<Result>(simulate(system, t_end, polled, t_start));
+                // CallableLaw(stiff=True): automatic is CVODE BDF where the extension has it
+                if (has_sundials) resolve_callable_law_method(system, polled);
+                return std::make_shared<Result>(simulate_built_in(system, t_end, polled, t_start));
             },
             rig);
     } catch (const Interrupted&) {

@@ -3,7 +3,6 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <sstream>
 
 #include "rig_binding.hpp"
 
@@ -33,13 +32,6 @@ HystereticFriction make_hysteretic(double stick_slope, const Polynomial& acceler
     p.reference_normal_force = reference_normal_force;
     p.branch_gap = branch_gap_from(branch_gap);
     return HystereticFriction(p);
-}
-
-std::string format(double v) {
-    std::ostringstream s;
-    s.precision(12);
-    s << v;
-    return s.str();
 }
 
 
@@ -161,12 +153,12 @@ branch_gap : {"hold", "error"}
             const auto tuple = [](const BranchPolynomial& b) {
                 const Polynomial c = to_tuple(b);
                 std::string s = "(";
-                for (std::size_t i = 0; i < 6; ++i) s += format(c[i]) + (i < 5 ? ", " : ")");
+                for (std::size_t i = 0; i < 6; ++i) s += format_double(c[i]) + (i < 5 ? ", " : ")");
                 return s;
             };
-            return "HystereticFriction(stick_slope=" + format(p.stick_slope) + ", accelerating=" + tuple(p.accelerating) +
-                   ", decelerating=" + tuple(p.decelerating) + ", stick_speed=" + format(p.stick_speed) +
-                   ", reference_normal_force=" + format(p.reference_normal_force) + ", branch_gap='" +
+            return "HystereticFriction(stick_slope=" + format_double(p.stick_slope) + ", accelerating=" + tuple(p.accelerating) +
+                   ", decelerating=" + tuple(p.decelerating) + ", stick_speed=" + format_double(p.stick_speed) +
+                   ", reference_normal_force=" + format_double(p.reference_normal_force) + ", branch_gap='" +
                    branch_gap_name(p.branch_gap) + "')";
         })
         .def("__reduce__", [](py::handle self) {

@@ -15,6 +15,7 @@ boundary: frictionsim.units).
 
 from ._core import (
     FRICTION_LAWS,
+    HAS_SUNDIALS,
     AxialVibrationRig,
     DetournayBit,
     DrillString,
@@ -45,7 +46,7 @@ from . import units
 #: engine routine that takes a parameter table's keywords converts them to the table's SI unit.
 units.install()
 
-__version__ = "0.1.0"
+from ._core import __version__  # the CMake project version (CMakeLists.txt), compiled into the extension
 
 #: Friction laws a rig can run with: the engine's list (include/frictionsim/friction/laws.hpp), each class named
 #: as in C++ (fs.Coulomb, fs.LuGre, ...), with its parameter table in ``Law.parameters``.
@@ -63,6 +64,7 @@ __all__ = [
     "HystereticFriction",
     "Event",
     "FRICTION_LAWS",
+    "HAS_SUNDIALS",
     "InvalidParameterError",
     "KinematicRig",
     "METHODS",

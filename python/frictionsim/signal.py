@@ -11,7 +11,8 @@ F_df, "the average sliding friction force in a vibration cycle". This module pro
 * :func:`spectrum` and :func:`dominant_frequency` - one-sided spectra (SciPy) and a sub-bin peak frequency.
 * :func:`cycle_averages` and :func:`cycle_averaged` - means over whole vibration cycles (F_df).
 
-Pure Python (NumPy, SciPy, PyEMD); it does not need the compiled engine. Times are in s, frequencies in Hz,
+Pure Python (NumPy, SciPy; PyEMD for :func:`emd` only, from the optional extra ``signal``); it does not need
+the compiled engine. Times are in s, frequencies in Hz,
 and x in any unit (N for forces). Bad input raises :class:`frictionsim.InvalidParameterError` (a ValueError)
 whose ``parameter`` attribute and message name the parameter, and whose message states the rule.
 """
@@ -178,6 +179,21 @@ class Decomposition:
         return out + self.residue if include_residue else out
 
 
+def _pyemd_emd():
+    """PyEMD's EMD class, imported on first use (only emd() needs it, and importing it costs time).
+
+    PyEMD comes with the optional extra ``signal`` (the EMD-signal distribution): without it, an ImportError
+    that names the extra, not PyEMD's bare ModuleNotFoundError.
+    """
+    try:
+        from PyEMD import EMD
+    except ImportError as error:
+        raise ImportError(
+            "frictionsim.signal.emd needs PyEMD, which comes with the optional extra 'signal': "
+            "pip install 'frictionsim[signal]' (or pip install EMD-signal)", name="PyEMD") from error
+    return EMD
+
+
 def emd(t, x, *, max_imfs: Optional[int] = None, sd_threshold: float = 0.3, spline: str = "cubic",
         uniform_rtol: float = 1e-6, **pyemd_options) -> Decomposition:
     """Empirical Mode Decomposition of a uniformly sampled signal x(t) with PyEMD.
@@ -197,8 +213,13 @@ def emd(t, x, *, max_imfs: Optional[int] = None, sd_threshold: float = 0.3, spli
     Returns
     -------
     Decomposition with IMFs c_i, residue r_n, and each IMF's dominant frequency [Hz] and energy share.
+
+    Raises
+    ------
+    ImportError
+        PyEMD is not installed: it comes with the optional extra ``signal`` (``pip install 'frictionsim[signal]'``).
     """
-    from PyEMD import EMD  # deferred: PyEMD is only needed here, and importing it costs time
+    EMD = _pyemd_emd()
 
     owner = "emd"
     t, x = _samples(owner, t, x, min_samples=4)

@@ -51,7 +51,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     t_end : float, s
     method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams"}
         "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
-        (measured faster on these rigs, see the README).
+        (measured faster on these rigs, see the README). An extension built without SUNDIALS
+        (``fs.HAS_SUNDIALS`` is False) runs "automatic" as Dormand-Prince for every law, and "cvode_bdf" /
+        "cvode_adams" raise InvalidParameterError saying how to get them.
     linear_solver : {"automatic", "dense", "band", "sparse"}
         The linear solver of CVODE BDF's Newton iteration: "automatic" is band LU where the rig declares a banded
         Jacobian (a StringRig: its nodes couple only their neighbours), dense LU otherwise; "sparse" (KLU) only

@@ -4,21 +4,32 @@
 #   frictionsim_configure      configure $FRICTIONSIM_BUILD_DIR (default build/, Release, Ninja if available)
 #   frictionsim_build [target] build everything, or one target
 #   frictionsim_python_setup [extras]
-#                              create the project venv ($FRICTIONSIM_VENV, default .venv) and pip install the
-#                              package with its extras (default "test"; e.g. "bench") (builds the _core
-#                              extension; PyPI only, binary wheels only for the extras' packages)
+#                              create the project venv ($FRICTIONSIM_VENV, default .venv), build the wheel once
+#                              (frictionsim_build_wheel) and pip install that wheel with its extras (default
+#                              "test"; e.g. "bench"; PyPI only, binary wheels only for the extras' packages)
+#   frictionsim_build_wheel    pip wheel . into $FRICTIONSIM_WHEEL_DIR (builds the _core extension, SUNDIALS linked
+#                              statically); sets FRICTIONSIM_WHEEL to the wheel's path
+#   frictionsim_wheel_smoke_test DIR
+#                              the wheel $FRICTIONSIM_WHEEL in a fresh venv DIR (no extras; numpy etc. from pip's
+#                              cache): its extension needs no SUNDIALS shared library (readelf -d), it imports
+#                              and runs (scripts/lib/wheel_smoke.py)
+#   frictionsim_version        the version, from its one source (CMakeLists.txt's project(... VERSION))
 #
 # Environment: FRICTIONSIM_BUILD_DIR (default <repo>/build), FRICTIONSIM_CMAKE_ARGS (extra cmake arguments,
 # split on spaces, e.g. "-DFRICTIONSIM_SANITIZE=ON"), FRICTIONSIM_SKIP_DEPS=1 (do not touch packages),
-# FRICTIONSIM_VENV (the Python virtual environment, default <repo>/.venv).
+# FRICTIONSIM_VENV (the Python virtual environment, default <repo>/.venv), FRICTIONSIM_WHEEL_DIR (where the wheel
+# goes, default <repo>/out/wheel).
 
 FRICTIONSIM_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 FRICTIONSIM_BUILD_DIR="${FRICTIONSIM_BUILD_DIR:-$FRICTIONSIM_ROOT/build}"
 FRICTIONSIM_JOBS="$(nproc 2>/dev/null || echo 2)"
 FRICTIONSIM_VENV="${FRICTIONSIM_VENV:-$FRICTIONSIM_ROOT/.venv}"
+FRICTIONSIM_WHEEL_DIR="${FRICTIONSIM_WHEEL_DIR:-$FRICTIONSIM_ROOT/out/wheel}"
 
-# Everything scripts/test and scripts/demo need on Debian bookworm.
-FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ libsundials-dev libsuitesparse-dev libeigen3-dev catch2 libbenchmark-dev python3-venv python3-dev valgrind)
+# Everything scripts/test and scripts/demo need on Debian bookworm (chromium + chromium-driver: the docs test opens
+# the built pages in headless Chromium through selenium; binutils: readelf for the wheel's dependencies).
+FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ binutils libsundials-dev libsuitesparse-dev libeigen3-dev catch2
+    libbenchmark-dev python3-venv python3-dev valgrind chromium chromium-driver)
 
 frictionsim_log() { printf '\n==> %s\n' "$*" >&2; }
 
@@ -85,10 +96,59 @@ frictionsim_python_setup() {
         frictionsim_log "creating venv $FRICTIONSIM_VENV"
         "$python" -m venv "$FRICTIONSIM_VENV"
     fi
-    frictionsim_log "pip install .[$extras] into $FRICTIONSIM_VENV (builds frictionsim._core)"
     "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --upgrade pip
+    frictionsim_build_wheel
+    frictionsim_log "pip install $(basename "$FRICTIONSIM_WHEEL")[$extras] into $FRICTIONSIM_VENV"
+    # The same version may be installed already (a re-run): replace the package itself, then add what the extras
+    # need (the wheel's dependencies are resolved once, by the second command).
+    "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --force-reinstall --no-deps "$FRICTIONSIM_WHEEL"
+    "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --only-binary=scikit-sundae,sundials4py \
+        "$FRICTIONSIM_WHEEL[$extras]"
+}
+
+frictionsim_version() {
+    "${FRICTIONSIM_PYTHON:-python3}" - "$FRICTIONSIM_ROOT/CMakeLists.txt" <<'PY'
+import re, sys
+print(re.search(r"project\(\s*frictionsim\s+VERSION\s+([0-9]+\.[0-9]+\.[0-9]+)", open(sys.argv[1]).read()).group(1))
+PY
+}
+
+frictionsim_build_wheel() {
+    frictionsim_log "pip wheel . into $FRICTIONSIM_WHEEL_DIR (builds frictionsim._core)"
+    mkdir -p "$FRICTIONSIM_WHEEL_DIR"
+    rm -f "$FRICTIONSIM_WHEEL_DIR"/frictionsim-*.whl
     # CMAKE_BUILD_PARALLEL_LEVEL: scikit-build-core's build uses both cores like the C++ build
     CMAKE_BUILD_PARALLEL_LEVEL="$FRICTIONSIM_JOBS" \
-        "$FRICTIONSIM_VENV/bin/python" -m pip install --quiet --only-binary=scikit-sundae,sundials4py \
-        "$FRICTIONSIM_ROOT[$extras]"
+        "$FRICTIONSIM_VENV/bin/python" -m pip wheel --quiet --no-deps --wheel-dir "$FRICTIONSIM_WHEEL_DIR" \
+        "$FRICTIONSIM_ROOT"
+    local wheels=("$FRICTIONSIM_WHEEL_DIR"/frictionsim-*.whl)
+    if ((${#wheels[@]} != 1)) || [[ ! -f "${wheels[0]}" ]]; then
+        echo "error: pip wheel left ${#wheels[@]} frictionsim wheels in $FRICTIONSIM_WHEEL_DIR" >&2
+        return 1
+    fi
+    FRICTIONSIM_WHEEL="${wheels[0]}"
+}
+
+frictionsim_wheel_smoke_test() {
+    local venv="$1" unpacked="$1-unpacked" python="${FRICTIONSIM_PYTHON:-python3}"
+    frictionsim_log "smoke test of $(basename "$FRICTIONSIM_WHEEL") in a fresh venv ($venv)"
+    rm -rf "$venv" "$unpacked"
+    # The extension inside the wheel: no SUNDIALS shared library among its needs (SUNDIALS is linked statically).
+    "$python" -m zipfile -e "$FRICTIONSIM_WHEEL" "$unpacked"
+    local extension needed
+    extension="$(find "$unpacked/frictionsim" -maxdepth 1 -name '_core*.so' | head -n 1)"
+    if [[ -z "$extension" ]]; then
+        echo "error: no frictionsim/_core*.so in $FRICTIONSIM_WHEEL" >&2
+        return 1
+    fi
+    needed="$(readelf -d "$extension" | sed -n 's/.*(NEEDED).*\[\(.*\)\]/\1/p')"
+    printf 'the wheel'"'"'s extension needs: %s\n' "${needed//$'\n'/ }" >&2
+    if grep -qi sundials <<<"$needed"; then
+        echo "error: the wheel's extension links a SUNDIALS shared library" >&2
+        return 1
+    fi
+    "$python" -m venv "$venv"
+    "$venv/bin/python" -m pip install --quiet "$FRICTIONSIM_WHEEL"
+    # From the venv's directory: the wheel's files are imported, never the source tree.
+    (cd "$venv" && "$venv/bin/python" "$FRICTIONSIM_ROOT/scripts/lib/wheel_smoke.py" "$(frictionsim_version)")
 }
