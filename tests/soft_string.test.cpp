@@ -3,8 +3,12 @@
 // with tension-dominated contact (the exponential closed form of the continuous equation, approached at first
 // order in the element length) and with the contact switching to the low side (the continuous equation with the
 // absolute value, integrated independently), the buckling loads against their formulas worked in field units, the
-// node side forces given a tension profile, and bad input named.
+// node side forces given a tension profile, and bad input named. Aadnoy's curvature form (TorqueDragMethod::aadnoy,
+// tag [aadnoy]): the build's closed form and the capstan to rounding at any element length, the contact switch
+// against RK4, straight pipe / friction vector / multipliers / buckling as Johancsik's, and on a 3D well both methods
+// against an independent RK4 of the continuous 3D equation (orders measured: 1 and 2); a locked-up string named.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -81,6 +85,54 @@ double build_tension_rk4(double theta_bottom, double force_bottom, double radius
         t += h;
     }
     return f;
+}
+
+/// The continuous soft string along a survey's minimum-curvature path, classical RK4 from the bit up, independent
+/// of SoftString's elements: dF/ds = -w t_z - sigma |F dt/ds + w (z - t_z t)|, dM/ds = -mu_c r |...| (s measured
+/// depth, t the unit tangent, z down). Returns {hook load, surface torque}; steps per course.
+struct Continuous {
+    double hook_load, surface_torque;
+};
+Continuous continuous_soft_string(const Survey& survey, double length, double w, double sigma, double torque_per_force,
+                                  double bit_force, int steps) {
+    const std::vector<SurveyStation>& st = survey.stations();
+    auto rate = [&](std::size_t c, double md, double f, double& torque_rate) {
+        const std::array<double, 3> t1 = well_tangent(st[c].inclination, st[c].azimuth),
+                                    t2 = well_tangent(st[c + 1].inclination, st[c + 1].azimuth);
+        const double beta = survey.dogleg(c + 1), course = st[c + 1].measured_depth - st[c].measured_depth;
+        const double x = (md - st[c].measured_depth) / course;
+        std::array<double, 3> t = t1, turn{{0.0, 0.0, 0.0}};  // the tangent and dt/ds on the arc
+        if (beta > 0.0)
+            for (int k = 0; k < 3; ++k) {
+                t[k] = (std::sin((1 - x) * beta) * t1[k] + std::sin(x * beta) * t2[k]) / std::sin(beta);
+                turn[k] = beta / course * (-std::cos((1 - x) * beta) * t1[k] + std::cos(x * beta) * t2[k]) /
+                          std::sin(beta);
+            }
+        double squared = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            const double n = f * turn[k] + w * ((k == 2 ? 1.0 : 0.0) - t[2] * t[k]);
+            squared += n * n;
+        }
+        torque_rate = -torque_per_force * std::sqrt(squared);
+        return -w * t[2] - sigma * std::sqrt(squared);
+    };
+    double f = bit_force, m = 0.0;
+    std::size_t last = 0;
+    while (st[last + 1].measured_depth < length) ++last;
+    for (std::size_t c = last + 1; c-- > 0;) {
+        const double bottom = std::min(st[c + 1].measured_depth, length);
+        const double h = -(bottom - st[c].measured_depth) / steps;
+        double md = bottom;
+        for (int i = 0; i < steps; ++i) {
+            double m1, m2, m3, m4;
+            const double k1 = rate(c, md, f, m1), k2 = rate(c, md + h / 2, f + h / 2 * k1, m2),
+                         k3 = rate(c, md + h / 2, f + h / 2 * k2, m3), k4 = rate(c, md + h, f + h * k3, m4);
+            f += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+            m += h / 6 * (m1 + 2 * m2 + 2 * m3 + m4);
+            md += h;
+        }
+    }
+    return {f, m};
 }
 
 }  // namespace
@@ -526,4 +578,215 @@ TEST_CASE("soft string: the operations' kinematics", "[soft_string]") {
     CHECK(rotating.direction == 0.0);
     CHECK(rotating.axial_speed == 0.0);
     CHECK(operation_kinematics(Operation::rotary_drilling, p).bit_torque == 4e3);
+}
+
+// ---- Aadnoy's curvature form (TorqueDragMethod::aadnoy): closed form per element
+
+TEST_CASE("soft string, Aadnoy: a weighted build with tension-dominated contact equals the continuous closed form at "
+          "any element length", "[soft_string][aadnoy]") {
+    // the build of the Johancsik test above (600 m to 60 degrees, 2400 m of tangent below): where Johancsik's step is
+    // first order (5 % off at 120 m elements), Aadnoy's closed form is exact at every node of the build, whatever the
+    // element length, from one 600 m element on the build to 1.25 m ones
+    const double mu = 0.3, build = 600.0, tangent = 2400.0, theta1 = 60.0 * deg, radius = build / theta1;
+    const Survey survey = Survey::from_degrees({{0.0, 0.0, 0.0}, {build, 60.0, 0.0}, {build + tangent, 60.0, 0.0}});
+    const PipeSection dp = pipe(build + tangent);
+    const SoftStringParams p = open_hole(mu);
+    const double w = buoyed(dp, p.mud_density);
+    for (double sigma : {mu, -mu}) {
+        const double bottom = w * tangent * (std::cos(theta1) + sigma * std::sin(theta1));
+        for (std::size_t n : {5u, 10u, 35u, 300u, 2400u}) {  // a node at the end of the build each time
+            const SoftString string(survey, DrillString({dp}), n, TorqueDragMethod::aadnoy);
+            REQUIRE(string.method() == TorqueDragMethod::aadnoy);
+            const TorqueDragResult r = string.run(sigma > 0 ? Operation::trip_out : Operation::trip_in, p);
+            INFO((sigma > 0 ? "trip out" : "trip in") << ", N = " << n);
+            CHECK(r.tension[n / 5] == Approx(bottom).epsilon(1e-13));
+            for (std::size_t i = 0; i <= n / 5; ++i)
+                CHECK(r.tension[i] == Approx(build_tension(r.measured_depth[i] / radius, theta1, bottom, radius, w,
+                                                           sigma)).epsilon(1e-13));
+            // the side force integrates to the friction's share of the change of tension
+            double side = 0.0;
+            for (std::size_t e = 0; e < n / 5; ++e) side += r.side_force[e];
+            CHECK(sigma * side == Approx(r.hook_load() - bottom - w * radius * std::sin(theta1)).epsilon(1e-11));
+        }
+    }
+    // rotating off bottom: no axial friction, the tension is the weight's, F = F_b + R w (sin theta1 - sin theta), and
+    // the torque mu r times the side force mu r (integral of F - R w sin theta over theta) + mu r w L_t sin theta1
+    const double r = 0.127 / 2, below = w * tangent * std::cos(theta1);
+    const double torque = mu * r * ((below + radius * w * std::sin(theta1)) * theta1 -
+                                    2.0 * radius * w * (1.0 - std::cos(theta1)) + w * tangent * std::sin(theta1));
+    for (std::size_t n : {5u, 15u, 600u}) {
+        const SoftString string(survey, DrillString({dp}), n, TorqueDragMethod::aadnoy);
+        const TorqueDragResult rotating = string.run(Operation::rotating_off_bottom, p);
+        CHECK(rotating.surface_torque() == Approx(torque).epsilon(1e-13));
+        CHECK(rotating.hook_load() == Approx(below + radius * w * std::sin(theta1)).epsilon(1e-13));
+    }
+}
+
+TEST_CASE("soft string, Aadnoy: the capstan relation holds exactly around a weightless 3D arc",
+          "[soft_string][aadnoy]") {
+    // the arcs of the Johancsik capstan tests: F_in exp(+/- mu theta) to rounding, with one element on the arc or many,
+    // and through the vertical (azimuth jumping by 180 degrees) the dogleg, not the azimuth change
+    const double mu = 0.25, mud = 1200.0, arc = 600.0, straight = 1200.0;
+    const Survey survey = Survey::from_degrees({{0.0, 90.0, 45.0}, {arc, 30.0, 200.0}, {arc + straight, 30.0, 200.0}});
+    const double i1 = 90.0 * deg, a1 = 45.0 * deg, i2 = 30.0 * deg, a2 = 200.0 * deg;
+    const double theta = std::acos(std::cos(i2 - i1) - std::sin(i1) * std::sin(i2) * (1.0 - std::cos(a2 - a1)));
+    const PipeSection weightless = pipe(arc, mud), heavy = pipe(straight);
+    SoftStringParams p = open_hole(mu);
+    p.mud_density = mud;
+    const double w = buoyed(heavy, mud);
+    const double pulled = w * straight * (std::cos(i2) + mu * std::sin(i2));
+    const double pushed = w * straight * (std::cos(i2) - mu * std::sin(i2));
+    for (std::size_t n : {3u, 9u, 90u, 720u}) {
+        const SoftString string(survey, DrillString({weightless, heavy}), n, TorqueDragMethod::aadnoy);
+        INFO("N = " << n);
+        CHECK(string.run(Operation::trip_out, p).hook_load() == Approx(pulled * std::exp(mu * theta)).epsilon(1e-13));
+        CHECK(string.run(Operation::trip_in, p).hook_load() == Approx(pushed * std::exp(-mu * theta)).epsilon(1e-13));
+        // rotating: the tension stays F_in on the arc, the torque is mu r F_in theta (Aadnoy et al. 2010: rotation
+        // in a bend)
+        const double hanging = w * straight * std::cos(i2);
+        const TorqueDragResult rotating = string.run(Operation::rotating_off_bottom, p);
+        CHECK(rotating.surface_torque() ==
+              Approx(mu * 0.0635 * (hanging * theta + w * straight * std::sin(i2))).epsilon(1e-13));
+    }
+    const Survey through = Survey::from_degrees({{0.0, 20.0, 0.0}, {400.0, 20.0, 180.0}, {1200.0, 20.0, 180.0}});
+    const SoftString vertical(through, DrillString({pipe(400.0, mud), pipe(800.0)}), 3, TorqueDragMethod::aadnoy);
+    const double hung = w * 800.0 * (std::cos(20.0 * deg) + mu * std::sin(20.0 * deg));
+    CHECK(vertical.run(Operation::trip_out, p).hook_load() == Approx(hung * std::exp(mu * 40.0 * deg)).epsilon(1e-13));
+}
+
+TEST_CASE("soft string, Aadnoy: straight pipe, the friction vector, multipliers and buckling as Johancsik's",
+          "[soft_string][aadnoy]") {
+    // on a straight pipe both methods are exact: w L (cos I +/- mu sin I) with the friction vector's shares
+    const double inclination = 70.0 * deg, length = 2000.0, mu = 0.3;
+    const Survey survey({{0.0, inclination, 0.0}, {length, inclination, 0.0}});
+    const PipeSection dp = pipe(length);
+    const SoftString johancsik(survey, DrillString({dp}), 200);
+    const SoftString aadnoy(survey, DrillString({dp}), 200, TorqueDragMethod::aadnoy);
+    SoftStringParams p = open_hole(mu);
+    p.weight_on_bit = 60e3;
+    p.bit_torque = 5e3;
+    const double w = buoyed(dp, p.mud_density);
+    CHECK(aadnoy.run(Operation::trip_out, p).hook_load() ==
+          Approx(w * length * (std::cos(inclination) + mu * std::sin(inclination))).epsilon(1e-13));
+    FrictionMultipliers m;
+    m.axial.assign(200, 1.0);
+    m.circumferential.assign(200, 1.0);
+    for (std::size_t e = 0; e < 200; ++e) {
+        m.axial[e] = e >= 80 && e < 140 ? 0.1 + 0.01 * static_cast<double>(e - 80) : 1.0;
+        m.circumferential[e] = e < 50 ? 0.5 : 1.0;
+    }
+    for (Operation op : {Operation::trip_in, Operation::reaming, Operation::backreaming, Operation::rotating_off_bottom,
+                         Operation::sliding_drilling, Operation::rotary_drilling}) {
+        INFO(operation_name(op));
+        const TorqueDragResult a = aadnoy.run(op, p, m), j = johancsik.run(op, p, m);
+        for (std::size_t i = 0; i <= 200; i += 20) {
+            CHECK(a.tension[i] == Approx(j.tension[i]).epsilon(1e-12).margin(1e-9));
+            CHECK(a.torque[i] == Approx(j.torque[i]).epsilon(1e-12).margin(1e-9));
+        }
+        for (std::size_t e = 0; e < 200; e += 20)
+            CHECK(a.side_force_per_length[e] == Approx(w * std::sin(inclination)));
+        CHECK(a.sinusoidal_buckling_load == j.sinusoidal_buckling_load);  // the loads do not depend on the tension
+        for (std::size_t i = 0; i <= 200; ++i) {
+            CHECK(static_cast<bool>(a.sinusoidally_buckled[i]) == (-a.tension[i] > a.sinusoidal_buckling_load[i]));
+            CHECK(static_cast<bool>(a.helically_buckled[i]) == (-a.tension[i] > a.helical_buckling_load[i]));
+        }
+    }
+    // sliding 60 kN at the end of a 2000 m, 70 degree hole pushes the compression past the sinusoidal load: flagged
+    const TorqueDragResult sliding = aadnoy.run(Operation::sliding_drilling, p);
+    CHECK(sliding.sinusoidally_buckled.back() == (60e3 > sliding.sinusoidal_buckling_load.back()));
+
+    // the default is Johancsik's
+    const SoftString plain(survey, DrillString({dp}), 200);
+    CHECK(plain.method() == TorqueDragMethod::johancsik);
+    CHECK(std::string(torque_drag_method_name(TorqueDragMethod::aadnoy)) == "aadnoy");
+    CHECK(rejected_parameter([&] {
+              (void)SoftString(survey, DrillString({dp}), 10, static_cast<TorqueDragMethod>(7));
+          }) == "method");
+}
+
+TEST_CASE("soft string, Aadnoy: where the contact moves to the low side the pieces follow the continuous equation "
+          "with the absolute value", "[soft_string][aadnoy]") {
+    // the vertical-to-horizontal build with the bit at its end: Aadnoy's element is split where F / R = w sin theta
+    // (located on its closed form) and continued on the other side, so the hook load is the continuous equation's
+    // (RK4 with 400,000 steps, itself good to 1e-12 across the kink) with one 942 m element as with 2400
+    const double mu = 0.3, theta1 = 90.0 * deg, radius = 30.0 / (3.0 * deg), build = radius * theta1;
+    const Survey survey({{0.0, 0.0, 2.0}, {build, theta1, 2.0}});
+    const PipeSection dp = pipe(build);
+    const SoftStringParams p = open_hole(mu);
+    const double w = buoyed(dp, p.mud_density);
+    for (double sigma : {mu, -mu}) {
+        const double reference = build_tension_rk4(theta1, 0.0, radius, w, sigma, 400000);
+        for (std::size_t n : {1u, 2u, 7u, 300u, 2400u}) {
+            const SoftString string(survey, DrillString({dp}), n, TorqueDragMethod::aadnoy);
+            const TorqueDragResult r = string.run(sigma > 0 ? Operation::trip_out : Operation::trip_in, p);
+            INFO((sigma > 0 ? "trip out" : "trip in") << ", N = " << n);
+            CHECK(r.hook_load() == Approx(reference).epsilon(1e-10));
+            for (double f : r.side_force) CHECK(f >= 0.0);
+        }
+    }
+}
+
+TEST_CASE("soft string: on a 3D well both methods converge to the continuous equation, Johancsik at first order and "
+          "Aadnoy at second", "[soft_string][aadnoy]") {
+    // the 6 km build-and-turn, drop-and-turn well; the reference integrates the continuous 3D equation by RK4 along the
+    // minimum-curvature arcs (10,000 steps a course; halving them changes it by < 1e-12). Where the weight has a share
+    // across a dogleg's plane Aadnoy's element takes that share's side force at its middle: second order, measured
+    // 8e-7 (trip out) at 100 m elements against Johancsik's 8e-3. Stations fall on nodes (N divides 6000 by 100 m).
+    const Survey survey = field_well();
+    const PipeSection dp = pipe(6000.0);
+    const double mu = 0.3, r = 0.127 / 2;
+    SoftStringParams p = open_hole(mu);
+    p.weight_on_bit = 60e3;
+    const double w = buoyed(dp, p.mud_density);
+    const double v = p.trip_speed, surface = p.rotary_speed * r, speed = std::hypot(v, surface);
+    struct Case {
+        Operation op;
+        double sigma, torque_per_force, bit_force;
+        bool torque;
+    };
+    for (const Case c : {Case{Operation::trip_out, mu, 0.0, 0.0, false}, Case{Operation::trip_in, -mu, 0.0, 0.0, false},
+                         Case{Operation::sliding_drilling, -mu, 0.0, -60e3, false},
+                         Case{Operation::rotating_off_bottom, 0.0, mu * r, 0.0, true},
+                         Case{Operation::reaming, -mu * v / speed, mu * r * surface / speed, 0.0, true}}) {
+        const Continuous reference = continuous_soft_string(survey, 6000.0, w, c.sigma, c.torque_per_force, c.bit_force,
+                                                            10000);
+        const double exact = c.torque ? reference.surface_torque : reference.hook_load;
+        double previous_j = 0.0, previous_a = 0.0;
+        for (std::size_t n : {60u, 120u, 240u, 480u}) {
+            const TorqueDragResult j = SoftString(survey, DrillString({dp}), n).run(c.op, p);
+            const TorqueDragResult a = SoftString(survey, DrillString({dp}), n, TorqueDragMethod::aadnoy).run(c.op, p);
+            const double error_j = std::abs((c.torque ? j.surface_torque() : j.hook_load()) / exact - 1.0);
+            const double error_a = std::abs((c.torque ? a.surface_torque() : a.hook_load()) / exact - 1.0);
+            INFO(operation_name(c.op) << ", N = " << n << ": relative error Johancsik " << error_j << ", Aadnoy "
+                                      << error_a);
+            CHECK(error_a < 2e-6 * std::pow(60.0 / static_cast<double>(n), 2));
+            CHECK(error_a < 1e-3 * error_j);
+            if (previous_j > 0.0) {
+                CHECK(previous_j / error_j == Approx(2.0).epsilon(0.03));  // first order
+                CHECK(previous_a / error_a == Approx(4.0).epsilon(0.03));  // second order
+            }
+            previous_j = error_j;
+            previous_a = error_a;
+        }
+    }
+}
+
+TEST_CASE("soft string: a friction factor that locks the string up is named, never a NaN", "[soft_string][aadnoy]") {
+    // running in through 70 degrees of bends at mu = 3104: the compression would grow as e^(mu theta), past any double
+    const Survey survey = Survey::from_degrees({{0.0, 0.0, 0.0}, {400.0, 0.0, 0.0}, {1200.0, 60.0, 40.0},
+                                                {2500.0, 70.0, 50.0}});
+    SoftStringParams p = open_hole(3104.0);  // what hypothesis found (tests/python/test_wells.py)
+    p.cased_hole_friction = 1.0;
+    p.mud_density = 177.8;
+    p.hole_diameter = p.casing_inner_diameter = 1.0;
+    PipeSection collar = pipe(200.0);
+    collar.outer_diameter = 0.1651;
+    collar.inner_diameter = 0.0714;
+    for (TorqueDragMethod m : {TorqueDragMethod::johancsik, TorqueDragMethod::aadnoy}) {
+        INFO(torque_drag_method_name(m));
+        const SoftString string(survey, DrillString({pipe(2300.0), collar}), 125, m);
+        CHECK(rejected_parameter([&] { (void)string.run(Operation::trip_in, p); }) == "open_hole_friction");
+        CHECK(contains(rejection_message([&] { (void)string.run(Operation::trip_in, p); }), "locks up"));
+        CHECK_NOTHROW(string.run(Operation::trip_in, open_hole(0.4)));
+    }
 }

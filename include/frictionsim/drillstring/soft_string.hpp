@@ -19,17 +19,44 @@
 // tension, zero at a bit off bottom, -WOB on bottom; at the surface it is the hook load (less the block weight).
 // Per-element friction multipliers (FrictionMultipliers) scale each element's axial and circumferential friction:
 // what a cycle average under axial vibration gives (oscillator_drag.hpp); all ones reproduce the plain run exactly.
+//
+// TorqueDragMethod::aadnoy, the curvature form (Aadnoy & Andersen 2001, J. Pet. Sci. Eng. 32, 53-71; Aadnoy,
+// Fazaelizadeh & Hareland 2010, JCPT 49(10), 25-36): each element is integrated in closed form instead of stepped.
+// The sections of those papers are its special cases (their equations for straight sections, for build-up and
+// drop-off sections with weight, and for side bends / combined 3D bends; the equation numbers are not quoted here,
+// the forms are derived below):
+//     straight:                F_top = F + w L (cos I +/- mu sin I),          M_top = M + mu r w L sin I
+//     build/drop with weight:  the linear equation dF/dI = -R (w cos I +/- mu (F / R - w sin I)) solved exactly:
+//                              A cos I + B sin I + C exp(-/+ mu I), the curved sections' exponential factor
+//     side bend / 3D dogleg:   the capstan F_top = F exp(+/- mu |theta|) on the absolute dogleg theta, and
+//                              M_top = M + mu r F |theta| under rotation alone
+// Derivation (ours; it unifies the three): on a minimum-curvature element the tangent turns at the rate kappa in a
+// fixed plane with unit normal b. Split gravity into its share rho = sqrt(1 - b_z^2) in that plane and b_z across it
+// and let psi be the angle from the in-plane gravity to the tangent (psi grows down-hole). The side force per
+// length is |(F kappa - rho w sin psi) n + b_z w b|: the in-plane term is Aadnoy's build with the weight rho w (a
+// vertical build: rho = 1, psi = I; a horizontal side bend: rho = 0, the capstan), solved exactly and piecewise
+// where F kappa - rho w sin psi changes sign (the contact moves to the other side: the root located by Illinois);
+// the across term w b_z adds in quadrature and enters as a constant extra side force per length taken at the
+// element's middle (second order in the element length; zero in a vertical plane, so exact there). In closed form,
+// with u the distance up from the element's bottom, lambda = sigma eps kappa (sigma = +/- mu_axial, eps the
+// contact's side), z = lambda + i kappa and phi1(x) = (e^x - 1) / x:
+//     N(u) = eps (kappa u F_b phi1(lambda u) + rho w u Re[e^(i psi(u)) (kappa u phi1[z u, i kappa u]
+//            + i phi1(z u))]) + e u phi1(lambda u),     F(u) = F_b + rho w u Re[e^(i psi(u)) phi1(i kappa u)] + sigma N
+// (phi1[a, b] the divided difference): free of cancellation as kappa -> 0 (the straight element) or sigma -> 0 (pure
+// rotation), so one formula serves every element.
 #pragma once
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "../detail/constants.hpp"
+#include "../detail/illinois.hpp"
 #include "../parameters.hpp"
 #include "sections.hpp"
 #include "survey.hpp"
@@ -68,6 +95,52 @@ inline const char* operation_name(Operation op) {
     }
     return "unknown";
 }
+
+/// How each element is integrated: Johancsik's explicit step (first order in the element length, the default) or
+/// Aadnoy's curvature form (closed form per element: exact on straight, planar build/drop and weightless curved
+/// elements at any length; second order where the weight has a share across a 3D dogleg's plane).
+enum class TorqueDragMethod { johancsik, aadnoy };
+
+inline const char* torque_drag_method_name(TorqueDragMethod m) {
+    return m == TorqueDragMethod::aadnoy ? "aadnoy" : "johancsik";
+}
+
+namespace detail {
+
+/// phi1(x) = (e^x - 1) / x, 1 at 0: its series where the quotient would cancel.
+inline std::complex<double> phi1(std::complex<double> x) {
+    if (std::norm(x) < 0.25) {  // |x| < 0.5 (norm: no square root)
+        std::complex<double> term = 1.0, sum = 1.0;
+        for (int n = 1; n < 30; ++n) {
+            term *= x / static_cast<double>(n + 1);
+            sum += term;
+            if (std::norm(term) < 1e-34 * std::norm(sum)) break;
+        }
+        return sum;
+    }
+    return (std::exp(x) - 1.0) / x;
+}
+
+inline double phi1(double x) { return x == 0.0 ? 1.0 : std::expm1(x) / x; }
+
+/// The divided difference (phi1(a) - phi1(b)) / (a - b), phi1'(a) at a = b. Close arguments: the series
+/// sum_{n >= 1} h_{n-1}(a, b) / (n + 1)!, h_m = sum_j a^j b^(m - j) (here |a|, |b| < 3.3: it converges).
+inline std::complex<double> phi1_divided(std::complex<double> a, std::complex<double> b) {
+    if (std::norm(a - b) >= 0.25) return (phi1(a) - phi1(b)) / (a - b);
+    std::complex<double> power = 1.0, h = 1.0, sum = 0.5;
+    double factorial = 2.0;
+    for (int n = 2; n < 80; ++n) {
+        power *= a;
+        h = power + b * h;
+        factorial *= static_cast<double>(n + 1);
+        const std::complex<double> term = h / factorial;
+        sum += term;
+        if (std::norm(term) < 1e-34 * std::norm(sum) && std::norm(power) < 1.0) break;
+    }
+    return sum;
+}
+
+}  // namespace detail
 
 /// Mud, hole, friction and the operation's speeds and bit loads. Defaults: 1.2 SG mud, 8 1/2" open hole below
 /// 9 5/8" 47 lb/ft casing, friction factors 0.25 cased / 0.30 open, 0.3 m/s trips, 30 m/h ROP, 120 rpm.
@@ -174,11 +247,16 @@ struct FrictionMultipliers {
 
 /// A drill string hung from measured depth 0 along a survey, cut into N elements of equal length (the nodes of
 /// DrillString::lump(N)), with the properties and geometry each element needs precomputed: each run() is one pass
-/// without allocation (when given a result to reuse).
+/// without allocation (when given a result to reuse). `method` chooses how each element is integrated
+/// (TorqueDragMethod; the side force of a result is then the element's integral of the side force per length).
 class SoftString {
 public:
-    SoftString(const Survey& survey, const DrillString& string, std::size_t elements) {
+    SoftString(const Survey& survey, const DrillString& string, std::size_t elements,
+               TorqueDragMethod method = TorqueDragMethod::johancsik)
+        : method_(method) {
         if (elements == 0) detail::reject("SoftString", "elements", "at least 1", 0.0);
+        if (method != TorqueDragMethod::johancsik && method != TorqueDragMethod::aadnoy)
+            detail::reject("SoftString", "method", "johancsik or aadnoy", static_cast<double>(method));
         const double length = string.length();
         if (!(survey.first_depth() <= 0.0))
             detail::reject("SoftString", "survey first measured_depth",
@@ -226,8 +304,11 @@ public:
             el.sin_inclination = std::sin(0.5 * (node[e].inclination + node[e + 1].inclination));
             el.axial_share = (node[e + 1].tvd - node[e].tvd) / el.length;
             el.lateral_turn_sq = std::max(el.dogleg * el.dogleg - el.inclination_change * el.inclination_change, 0.0);
+            place_in_plane(el, node[e].tangent, node[e + 1].tangent);
         }
     }
+
+    TorqueDragMethod method() const { return method_; }
 
     std::size_t elements() const { return element_.size(); }
     double element_length() const { return element_length_; }
@@ -247,7 +328,8 @@ public:
         return mid_depth < p.casing_shoe_depth ? p.cased_hole_friction : p.open_hole_friction;
     }
 
-    /// Wall contact force [N] of element e under tension F [N] (the expression in the header comment).
+    /// Wall contact force [N] of element e under tension F [N] (Johancsik's expression in the header comment,
+    /// whichever the method: what node_side_forces lumps).
     double element_side_force(std::size_t e, double tension, double mud_density) const {
         return side_force(element_[e], tension, element_weight(e, mud_density));
     }
@@ -297,7 +379,6 @@ private:
         for (std::size_t k = n; k-- > 0;) {  // from the bit up
             const Element& el = element_[k];
             const double weight = standard_gravity * (el.mass - p.mud_density * el.volume);
-            const double normal = side_force(el, force, weight);
             const bool cased = el.mid_depth < p.casing_shoe_depth;
             const double mu = cased ? p.cased_hole_friction : p.open_hole_friction;
             double axial = 1.0, circumferential = 0.0;  // the friction vector's shares
@@ -310,9 +391,18 @@ private:
             }
             if (axial_multiplier) axial *= axial_multiplier[k];  // times 1.0 is exact: no tool, the plain run
             if (circumferential_multiplier) circumferential *= circumferential_multiplier[k];
-            const double friction = mu * normal;
-            force += weight * el.axial_share + direction * axial * friction;
-            torque += circumferential * friction * el.radius;
+            double normal = 0.0;
+            if (method_ == TorqueDragMethod::johancsik) {
+                normal = side_force(el, force, weight);
+                const double friction = mu * normal;
+                force += weight * el.axial_share + direction * axial * friction;
+                torque += circumferential * friction * el.radius;
+            } else {
+                force = curved_element(el, force, weight / el.length, direction * mu * axial, normal);
+                torque += circumferential * mu * normal * el.radius;
+            }
+            // a friction factor high enough that e^(mu theta) leaves the doubles: the string locks up (no NaN out)
+            if (!(std::isfinite(force) && std::isfinite(torque))) reject_lock_up(cased, el, mu);
             out.tension[k] = force;
             out.torque[k] = torque;
             out.side_force[k] = normal;
@@ -396,7 +486,116 @@ private:
         double lateral_turn_sq = 0.0;     // beta^2 - dI^2: Johancsik's (dA sin I_avg)^2
         double sin_inclination = 0.0;     // sin I_avg
         double axial_share = 0.0;         // dTVD / dL: the weight's axial share
+        // Aadnoy's form: the element's arc (header comment)
+        double curvature = 0.0;           // kappa = beta / L, rad/m
+        double in_plane_share = 1.0;      // rho: gravity's share in the arc's plane
+        double across_share = 0.0;        // |b_z|: its share across it
+        double psi_bottom = 0.0;          // angle from the in-plane gravity to the tangent at the bottom, rad
     };
+
+    /// The plane of element el's arc (tangents at its top and bottom) and the angle psi of its bottom tangent.
+    static void place_in_plane(Element& el, const std::array<double, 3>& top, const std::array<double, 3>& bottom) {
+        el.curvature = el.dogleg / el.length;
+        std::array<double, 3> b{{0.0, 1.0, 0.0}};  // the plane's normal; a straight vertical element: any
+        if (el.dogleg > 1e-12) {  // rotating top onto bottom is positive about b, so psi grows down-hole
+            b = {{top[1] * bottom[2] - top[2] * bottom[1], top[2] * bottom[0] - top[0] * bottom[2],
+                  top[0] * bottom[1] - top[1] * bottom[0]}};
+        } else if (std::hypot(top[0], top[1]) > 1e-14) {  // straight: the vertical plane holding it
+            b = {{-top[1], top[0], 0.0}};
+        }
+        const double norm = std::sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+        for (double& x : b) x /= norm;
+        el.across_share = std::abs(b[2]);
+        el.in_plane_share = std::sqrt(std::max(0.0, 1.0 - b[2] * b[2]));
+        std::array<double, 3> e1 = top;  // gravity's direction in the plane (any in-plane one if it has none)
+        if (el.in_plane_share > 1e-12)
+            e1 = {{-b[2] * b[0] / el.in_plane_share, -b[2] * b[1] / el.in_plane_share,
+                   (1.0 - b[2] * b[2]) / el.in_plane_share}};
+        const std::array<double, 3> e2{{b[1] * e1[2] - b[2] * e1[1], b[2] * e1[0] - b[0] * e1[2],
+                                        b[0] * e1[1] - b[1] * e1[0]}};
+        const double psi_top = std::atan2(top[0] * e2[0] + top[1] * e2[1] + top[2] * e2[2],
+                                          top[0] * e1[0] + top[1] * e1[1] + top[2] * e1[2]);
+        el.psi_bottom = psi_top + el.dogleg;
+    }
+
+    struct Piece {
+        double force, normal;  // tension at the piece's top, side force over it
+    };
+
+    /// Aadnoy's closed form (header comment) over u up from a point of tension f0 and angle psi0, the contact on the
+    /// side eps (+1: F kappa > rho w sin psi), with the in-plane weight per length wr, sigma = +/- mu_axial and the
+    /// extra side force per length `extra` (the weight across the plane).
+    static Piece piece(double kappa, double wr, double sigma, double eps, double extra, double f0, double psi0,
+                       double u) {
+        using C = std::complex<double>;
+        const double turn = kappa * u, growth = detail::phi1(sigma * eps * turn);
+        double normal = turn * f0 * growth, axial = 0.0;
+        if (wr != 0.0) {
+            const C z(sigma * eps * turn, turn), i_turn(0.0, turn), rotation = std::polar(1.0, psi0 - turn);
+            const C bracket = turn * detail::phi1_divided(z, i_turn) + C(0.0, 1.0) * detail::phi1(z);
+            normal += wr * u * (rotation * bracket).real();
+            axial = wr * u * (rotation * detail::phi1(i_turn)).real();
+        }
+        normal = eps * normal + extra * u * growth;
+        return {f0 + axial + sigma * normal, normal};
+    }
+
+    /// One element by Aadnoy's form from the bottom tension `force` [N] with the buoyed weight per length w [N/m]
+    /// and sigma = +/- mu_axial: the tension at its top, its side force in `normal`.
+    static double curved_element(const Element& el, double force, double w, double sigma, double& normal) {
+        const double kappa = el.curvature, wr = el.in_plane_share * w, across = el.across_share * w;
+        if (kappa == 0.0) {  // straight: the closed form's kappa -> 0 limit, in short
+            normal = std::abs(wr * std::sin(el.psi_bottom)) * el.length;
+            return force + wr * std::cos(el.psi_bottom) * el.length + sigma * normal;
+        }
+        auto contact = [&](double f, double psi) { return kappa * f - wr * std::sin(psi); };  // in-plane, per length
+        auto side_of = [&](double h, double psi, double extra) {  // at h = 0: the side h moves to (dh/du's sign)
+            if (h != 0.0) return h > 0.0 ? 1.0 : -1.0;
+            return kappa * (2.0 * wr * std::cos(psi) + sigma * extra) >= 0.0 ? 1.0 : -1.0;
+        };
+        double extra = 0.0;
+        if (across != 0.0) {  // the across-plane weight in quadrature, at the element's middle (a predictor)
+            const double half = 0.5 * el.length, psi_mid = el.psi_bottom - kappa * half;
+            const double eps = side_of(contact(force, el.psi_bottom), el.psi_bottom, 0.0);
+            const double h = contact(piece(kappa, wr, sigma, eps, 0.0, force, el.psi_bottom, half).force, psi_mid);
+            // the extra side force is itself a source of friction: the middle's tension grows by sigma extra (L / 2)
+            // phi1(lambda L / 2) (the closed form is linear in it); two fixed-point passes make the middle's contact
+            // second order, one would leave the trips first order
+            const double feedback = kappa * sigma * half * detail::phi1(sigma * eps * kappa * half);
+            for (int pass = 0; pass < 3; ++pass) {
+                const double hm = h + feedback * extra;
+                extra = across * across / (std::hypot(hm, across) + std::abs(hm));  // sqrt(h^2 + q^2) - |h|
+            }
+        }
+        double psi = el.psi_bottom, remaining = el.length, f = force, total = 0.0;
+        double eps = side_of(contact(f, psi), psi, extra);
+        for (int pieces = 0;; ++pieces) {
+            const Piece whole = piece(kappa, wr, sigma, eps, extra, f, psi, remaining);
+            const double h_end = contact(whole.force, psi - kappa * remaining);
+            if (pieces == 3 || kappa == 0.0 || !(eps * h_end < 0.0)) {
+                total += whole.normal;
+                f = whole.force;
+                break;
+            }
+            // the contact changes sides inside: locate h = 0 on this piece's closed form, continue on the other side
+            detail::IllinoisBracket bracket{0.0, contact(f, psi), remaining, h_end};
+            double root = remaining;
+            for (int it = 0; it < 100 && bracket.b - bracket.a > 1e-13 * el.length; ++it) {
+                root = bracket.next();
+                const double h = contact(piece(kappa, wr, sigma, eps, extra, f, psi, root).force, psi - kappa * root);
+                if (h == 0.0) break;
+                bracket.move(root, h, eps * h < 0.0);
+            }
+            const Piece part = piece(kappa, wr, sigma, eps, extra, f, psi, root);
+            total += part.normal;
+            f = part.force;
+            psi -= kappa * root;
+            remaining -= root;
+            eps = -eps;
+        }
+        normal = total;
+        return f;
+    }
 
     [[noreturn]] static void reject_clearance(bool cased, const Element& el, double hole) {
         const std::string rule = "> the pipe's outer diameter, " + std::to_string(el.outer_diameter) +
@@ -404,11 +603,18 @@ private:
         detail::reject("SoftStringParams", cased ? "casing_inner_diameter" : "hole_diameter", rule.c_str(), hole);
     }
 
+    [[noreturn]] static void reject_lock_up(bool cased, const Element& el, double mu) {
+        const std::string rule = "small enough for a finite tension: the string locks up at measured depth " +
+                                 std::to_string(el.mid_depth) + " m";
+        detail::reject("SoftStringParams", cased ? "cased_hole_friction" : "open_hole_friction", rule.c_str(), mu);
+    }
+
     static double side_force(const Element& el, double tension, double weight) {
         const double vertical = tension * el.inclination_change + weight * el.sin_inclination;
         return std::sqrt(tension * tension * el.lateral_turn_sq + vertical * vertical);
     }
 
+    TorqueDragMethod method_ = TorqueDragMethod::johancsik;
     double element_length_ = 0.0;
     std::vector<double> depth_, inclination_, sqrt_sin_inclination_;
     std::vector<Element> element_;
