@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "simulation.hpp"
+#include "table_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -136,6 +137,23 @@ py::object Signal::to_python() const {
 
 //------------------------------------------------------------------------------------------------ rig
 namespace {
+
+/// A signal in a repr: the number of a constant; samples and callables, which no literal rebuilds, described.
+std::string describe_signal(const Signal& s) {
+    switch (s.kind()) {
+        case Signal::Kind::constant: return format_double(s.to_python().cast<double>());
+        case Signal::Kind::sampled: {
+            const py::tuple ty = s.to_python();
+            const auto t = ty[0].cast<py::array_t<double>>();
+            const py::ssize_t n = t.size();
+            return "<" + std::to_string(n) + " samples, t = " + format_double(t.at(0)) + " to " +
+                   format_double(t.at(n - 1)) + " s>";
+        }
+        case Signal::Kind::harmonic: break;
+        case Signal::Kind::callable: return "<" + std::string(py::repr(s.to_python())) + ">";
+    }
+    return "<harmonic>";
+}
 
 template <class Law>
 using Kinematic = KinematicRig<Law, Signal, Signal>;
@@ -274,7 +292,27 @@ initial_state : sequence of float, optional
             return reduce_by_construction(self, py::make_tuple(law_or_hysteretic_to_python(r.friction)), kwargs, "harmonic");
         })
         .def("__repr__", [](const KinematicRigPy& r) {
-            return "KinematicRig(friction=" + std::string(py::repr(law_or_hysteretic_to_python(r.friction))) + ")";
+            // Literal where a literal rebuilds the rig (constants, the harmonic velocity: eval(repr) is the same
+            // rig to the bit); samples and callables are described.
+            const bool harmonic = r.relative_velocity.kind() == Signal::Kind::harmonic;
+            std::string out = harmonic ? "KinematicRig.harmonic(" : "KinematicRig(";
+            out += std::string(py::repr(law_or_hysteretic_to_python(r.friction)));
+            if (harmonic) {
+                const py::tuple h = r.relative_velocity.to_python();
+                out += ", sliding_velocity=" + format_double(h[0].cast<double>()) +
+                       ", velocity_amplitude=" + format_double(h[1].cast<double>()) +
+                       ", frequency=" + format_double(*r.frequency);
+            } else {
+                out += ", relative_velocity=" + describe_signal(r.relative_velocity);
+            }
+            out += ", normal_force=" + describe_signal(r.normal_force);
+            if (r.initial_state) {
+                out += ", initial_state=[";
+                for (std::size_t i = 0; i < r.initial_state->size(); ++i)
+                    out += (i ? ", " : "") + format_double((*r.initial_state)[i]);
+                out += "]";
+            }
+            return out + ")";
         });
     return std::move(cls);
 }

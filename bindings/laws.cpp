@@ -17,6 +17,7 @@ namespace frictionsim::python {
 std::string format_double(double v) {
     // The shortest text that reads back to the same double: a repr rebuilds its object bit for bit (12 digits
     // turned a rig made from "55 rpm" into another rig, 7532 steps instead of 7535).
+    if (v == 0.0 && std::signbit(v)) return "-0.0";  // "-0" would read back as the integer 0
     char text[32];
     const std::to_chars_result end = std::to_chars(text, text + sizeof text, v);
     return std::string(text, end.ptr);

@@ -89,7 +89,13 @@ def test_a_law_with_any_parameters_constructs_or_is_rejected_naming_the_paramete
     (lambda: fs.HystereticFriction(stick_slope=1 / 3, accelerating=(0.1 + 0.2, 1 / 7, 0, 0, 0, 0),
                                    decelerating=(2 / 3, 0, 0, 0, 0, 0), stick_speed=math.pi / 100),
      lambda law: (law.stick_slope, law.accelerating, law.decelerating, law.stick_speed)),
-], ids=["torsional", "axial", "hysteretic"])
+    (lambda: fs.KinematicRig.harmonic(fs.Dahl(mu=0.41, tangential_stiffness=4e4), sliding_velocity=1e-3,
+                                      velocity_amplitude=math.pi / 10, frequency=17.0, normal_force=90.0,
+                                      initial_state=[0.1 / 3]),
+     lambda rig: (rig.relative_velocity, rig.normal_force, rig.frequency, rig.initial_state)),
+    (lambda: fs.KinematicRig(fs.Coulomb(mu=0.3), relative_velocity=0.1 + 0.2, normal_force=math.e),
+     lambda rig: (rig.relative_velocity, rig.normal_force)),
+], ids=["torsional", "axial", "hysteretic", "kinematic harmonic", "kinematic constant"])
 def test_a_repr_rebuilds_its_object_bit_for_bit(build, read):
     # Values that need 17 digits (a speed given in rpm, 0.1 + 0.2): the repr must not round them, or a rig rebuilt
     # from its recorded provenance is another rig (12 digits made 7532 steps of 7535 on the torsional rig).
