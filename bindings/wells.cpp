@@ -9,14 +9,17 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
 #include <frictionsim/drillstring/oscillator_drag.hpp>
+#include <frictionsim/drillstring/oscillator_response.hpp>
 #include <frictionsim/drillstring/soft_string.hpp>
 
 #include "table_binding.hpp"
@@ -119,6 +122,108 @@ bool names_field(const std::string& key, const std::array<Field<P>, N>& fields) 
     return false;
 }
 
+// ---- the dynamic vibration route (drillstring/oscillator_response.hpp): its keywords, kept apart
+constexpr auto response_fields = OscillatorResponseParams::fields();
+
+bool is_vibration_keyword(const std::string& key) {
+    if (key == "vibration") return true;
+    for (const Field<OscillatorResponseParams>& f : response_fields)
+        if (key == f.public_name()) return true;
+    return false;
+}
+
+/// `vibration` ('wave' or 'dynamic') and the dynamic run's settings (OscillatorResponseParams' table; None leaves
+/// `transient` unset: the default) into o; returns how many keywords it used.
+std::size_t read_vibration_keywords(const py::kwargs& kwargs, const char* owner, OscillatorDragParams& o) {
+    std::size_t used = 0;
+    if (kwargs.contains("vibration")) {
+        const py::handle v = kwargs["vibration"];
+        const std::string name = py::isinstance<py::str>(v) ? v.cast<std::string>() : "";
+        if (name == "wave") o.source = VibrationSource::wave;
+        else if (name == "dynamic") o.source = VibrationSource::dynamic;
+        else throw InvalidParameter("vibration", std::string(owner) + ": vibration must be 'wave' (the travelling-"
+                                                                      "wave estimate) or 'dynamic' (the axial string "
+                                                                      "model run to a steady state) (got " +
+                                                                      std::string(py::repr(v)) + ")");
+        ++used;
+    }
+    for (const Field<OscillatorResponseParams>& f : response_fields) {
+        if (!kwargs.contains(f.public_name())) continue;
+        const py::handle value = kwargs[f.public_name()];
+        ++used;
+        if (value.is_none() && f.rule.unset_allowed) {
+            o.dynamic.*(f.member) = std::numeric_limits<double>::quiet_NaN();
+            continue;
+        }
+        if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || !py::hasattr(value, "__float__"))
+            throw py::type_error(std::string(owner) + ": " + f.public_name() + " must be a number (got " +
+                                 type_name(value) + ")");
+        o.dynamic.*(f.member) = value.attr("__float__")().cast<double>();
+    }
+    validate_fields(owner, o.dynamic, response_fields);
+    return used;
+}
+
+std::vector<double> magnitudes(const std::vector<std::complex<double>>& z) {
+    std::vector<double> out(z.size());
+    for (std::size_t i = 0; i < z.size(); ++i) out[i] = std::abs(z[i]);
+    return out;
+}
+
+std::vector<double> phases(const std::vector<std::complex<double>>& z) {
+    std::vector<double> out(z.size());
+    for (std::size_t i = 0; i < z.size(); ++i) out[i] = std::arg(z[i]);
+    return out;
+}
+
+/// fs.OscillatorResponse: one tool's dynamic run (read-only arrays per node of the dynamic model).
+void register_oscillator_response(py::module_& m) {
+    py::class_<OscillatorResponse>(m, "OscillatorResponse", R"doc(
+One tool's periodic steady-state response from the dynamic axial string model (drillstring/oscillator_response.hpp):
+the event-driven StringRig in the well, the hook at the operation's speed, the bit holding the weight on bit (a
+free end), Coulomb walls with the soft string's side forces. Per node of the dynamic model (N + 1, node 0 at the
+surface): measured_depth [m], first_harmonic [m/s] and phase [rad] of the axial speed at the tool's frequency
+(v ~ V + first_harmonic sin(omega t + phase)), reversed (share of the cycle sliding against the operation),
+friction_factor (the wall's cycle-mean friction over mu N, from each node's mean balance) and amplitude [m/s]
+(what the friction sees: the first harmonic, at most the amplitude of the sinusoid with that mean friction).
+)doc")
+        .def_property_readonly("measured_depth", [](const OscillatorResponse& r) { return to_array(r.measured_depth); },
+                               "Measured depth of each node of the dynamic model [m].")
+        .def_property_readonly("first_harmonic",
+                               [](const OscillatorResponse& r) { return to_array(magnitudes(r.phasor)); },
+                               "Per node, the first harmonic of the axial speed at the tool's frequency [m/s].")
+        .def_property_readonly("phase", [](const OscillatorResponse& r) { return to_array(phases(r.phasor)); },
+                               "Per node, its phase [rad] (v ~ V + a sin(omega t + phase)).")
+        .def_property_readonly("reversed", [](const OscillatorResponse& r) { return to_array(r.reversed); },
+                               "Per node, the share of the cycle sliding against the operation's motion.")
+        .def_property_readonly("friction_factor", [](const OscillatorResponse& r) { return to_array(r.friction_factor); },
+                               "Per node, the wall's cycle-mean friction over mu N (1 where no contact).")
+        .def_property_readonly("amplitude", [](const OscillatorResponse& r) { return to_array(r.amplitude); },
+                               "Per node, the amplitude the friction sees [m/s].")
+        .def_readonly("excitation_node", &OscillatorResponse::excitation_node, "The node the tool's force acts on.")
+        .def_readonly("transient", &OscillatorResponse::transient, "Time run before the measured window [s].")
+        .def_readonly("measured_time", &OscillatorResponse::measured_time, "The whole cycles measured [s].")
+        .def_readonly("reach", &OscillatorResponse::reach,
+                      "The travelling-wave estimate's reach from the tool [m] (the default transient's length).")
+        .def_readonly("settled", &OscillatorResponse::settled,
+                      "False when max_time ran out before two windows agreed.")
+        .def_property_readonly("steps", [](const OscillatorResponse& r) { return r.stats.steps; },
+                               "Integrator steps of the whole run.")
+        .def_property_readonly("events", [](const OscillatorResponse& r) { return r.stats.events; },
+                               "Stick-slip switches of the whole run.")
+        .def("__repr__", [](const OscillatorResponse& r) {
+            return "OscillatorResponse(" + std::to_string(r.elements()) + " elements, transient " +
+                   format_double(r.transient) + " s, " + std::to_string(r.stats.events) + " events, settled=" +
+                   (r.settled ? "True" : "False") + ")";
+        });
+}
+
+const char* const vibration_keywords_doc =
+    "vibration ('wave': the travelling-wave estimate, microseconds; 'dynamic': the axial string model run to a "
+    "periodic steady state, seconds, operations without rotation only) and the dynamic run's settings: transient "
+    "(s, None: 4 l / c then windows until settled), cycles (8), elements_per_wavelength (16), damping_time (0 s), "
+    "rtol (1e-6), stick_speed (1e-4 m/s), steady_tolerance (0.02), max_time (30 s).\n";
+
 /// The conditions of SoftStringParams' table from keywords; with `tools`, also OscillatorDragParams' (the
 /// estimate's settings) and `model` / `lubricant`. Any other keyword is a TypeError naming it.
 SoftStringParams conditions_from(const py::kwargs& kwargs, const char* owner = "SoftString.run",
@@ -144,12 +249,14 @@ SoftStringParams conditions_from(const py::kwargs& kwargs, const char* owner = "
             tools->lubricant = lubricant_from_name(l.cast<std::string>());
             ++used;
         }
+        used += read_vibration_keywords(kwargs, owner, *tools);
     }
     if (used != kwargs.size())
         for (auto item : kwargs) {
             const std::string key = py::str(item.first);
             const bool known = names_field(key, condition_fields) ||
-                               (tools && (names_field(key, drag_fields) || key == "model" || key == "lubricant"));
+                               (tools && (names_field(key, drag_fields) || key == "model" || key == "lubricant" ||
+                                          is_vibration_keyword(key)));
             if (!known) throw py::type_error(std::string(owner) + "() got an unexpected keyword argument '" + key + "'");
         }
     validate_fields(owner, p, condition_fields);
@@ -193,6 +300,24 @@ std::size_t elements_from(py::handle value) {
         throw InvalidParameter("elements", "SoftString: elements must be in [1, " + std::to_string(max_elements) +
                                                "] (got " + std::to_string(n) + ")");
     return static_cast<std::size_t>(n);
+}
+
+/// SoftString.oscillator_response: one tool's dynamic run on its own.
+template <class Cls>
+void def_oscillator_response(Cls& cls) {
+    cls.def("oscillator_response",
+            [](const BoundSoftString& s, py::handle operation, const HydraulicOscillator& tool, const py::kwargs& kwargs) {
+                const Operation op = operation_from(operation);
+                OscillatorDragParams o;
+                const SoftStringParams p = conditions_from(kwargs, "SoftString.oscillator_response", &o);
+                py::gil_scoped_release release;
+                return s.tools.response_model().response(op, p, tool, o.dynamic);
+            },
+            kept("oscillator_response(self, operation: str, tool: HydraulicOscillator, **keywords) -> "
+                 "OscillatorResponse\n\nOne tool's periodic steady-state response from the dynamic axial string "
+                 "model under the operation (no rotation). Keywords: the conditions of SoftString.parameters and "
+                 "the dynamic run's settings: " + std::string(vibration_keywords_doc)),
+            py::arg("operation"), py::arg("tool"));
 }
 
 const char* const soft_string_doc = R"doc(
@@ -344,7 +469,8 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                    " N, surface_torque=" + format_double(r.surface_torque()) + " N m)";
         });
 
-    // ---- HydraulicOscillator, OscillatorDragResult
+    // ---- HydraulicOscillator, OscillatorResponse, OscillatorDragResult
+    register_oscillator_response(m);
     py::class_<HydraulicOscillator> tool(m, "HydraulicOscillator", kept(
         "An axial vibration tool (hydraulic oscillator, agitator) in the string: its force amplitude and frequency at "
         "a measured depth (drillstring/axial_wave.hpp).\n\nKeywords\n--------\n" + keywords_doc(tool_fields)));
@@ -381,7 +507,8 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                                "TorqueDragResult with them (a copy).")
         .def_property_readonly("vibration_amplitude",
                                [](const OscillatorDragResult& r) { return to_array(r.vibration_amplitude); },
-                               "Per element, the tools' axial velocity amplitude [m/s].")
+                               "Per element, the tools' axial velocity amplitude [m/s] (vibration='dynamic': the "
+                               "amplitude the friction sees; the first harmonics are in responses).")
         .def_property_readonly("axial_factor", [](const OscillatorDragResult& r) { return to_array(r.multipliers.axial); },
                                "Per element, the factor on the axial friction.")
         .def_property_readonly("circumferential_factor",
@@ -393,6 +520,10 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
         .def_readonly("zone_bottom", &OscillatorDragResult::zone_bottom, "Bottom of the zone of influence [m MD].")
         .def_readonly("zone_length", &OscillatorDragResult::zone_length,
                       "Length of the elements reduced past zone_threshold [m] (0: no zone).")
+        .def_property_readonly("source", [](const OscillatorDragResult& r) { return vibration_source_name(r.source); },
+                               "Where the vibration came from: 'wave' or 'dynamic'.")
+        .def_property_readonly("responses", [](const OscillatorDragResult& r) { return r.responses; },
+                               "vibration='dynamic': each active tool's OscillatorResponse (copies), else empty.")
         .def_readonly("coupling_passes", &OscillatorDragResult::coupling_passes)
         .def_readonly("converged", &OscillatorDragResult::converged)
         .def_property_readonly("hook_load_change", &OscillatorDragResult::hook_load_change, "[N]")
@@ -447,7 +578,8 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
     const std::string tool_keywords =
         "Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), "
         "zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle "
-        "mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).\n";
+        "mean, or 'table5': paper 000's power law), lubricant (Table 5's row: dry, water, wbm, obm, sbm), " +
+        std::string(vibration_keywords_doc);
     cls.def("oscillators",
             [](const BoundSoftString& s, py::handle operation, py::handle tools, const py::kwargs& kwargs) {
                 const Operation op = operation_from(operation);
@@ -474,6 +606,7 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                  "**keywords) -> float\n\nThe weight on bit [N] transferred while sliding at the hook load [N] with "
                  "the tools (an empty list: without): the placement objective.\n" + tool_keywords),
             py::arg("hook_load"), py::arg("tools"));
+    def_oscillator_response(cls);
     options.enable_function_signatures();
     cls.def_property_readonly("survey", [](const BoundSoftString& s) { return s.survey; }, "The Survey (a copy).")
         .def_property_readonly("string", [](const BoundSoftString& s) { return s.string; },

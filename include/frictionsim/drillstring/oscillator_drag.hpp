@@ -2,8 +2,11 @@
 // friction is reduced, element by element, where the tools' vibration reverses the sliding.
 //  1. the soft string without the tools gives each element's side force q_n and so the wall's Coulomb friction
 //     mu q_n per metre; the operation gives the sliding speed V and the surface speed omega r;
-//  2. each tool's travelling wave (axial_wave.hpp) gives the vibration velocity amplitude along the string; several
-//     tools add as independent (unsynchronised) vibrations, a^2 = sum a_i^2 (their mean squares add);
+//  2. each tool's travelling wave (axial_wave.hpp) gives the vibration velocity amplitude along the string, or, with
+//     source = VibrationSource::dynamic, the dynamic axial string model run to a periodic steady state
+//     (oscillator_response.hpp: resonances, partial sticking; seconds instead of microseconds, so it is taken once,
+//     under the plain run's side forces, and held while step 4 iterates); several tools add as independent
+//     (unsynchronised) vibrations, a^2 = sum a_i^2 (their mean squares add);
 //  3. each element's friction is scaled by its cycle mean (vibration_friction.hpp), user's choice of model:
 //       friction_vector  axial: < v / |q| > / (V / |q_0|), circumferential: < w / |q| > / (w / |q_0|)
 //                        ((2 / pi) asin(V / a) without rotation), or
@@ -29,6 +32,7 @@
 #include "../friction/power_law.hpp"
 #include "../parameters.hpp"
 #include "axial_wave.hpp"
+#include "oscillator_response.hpp"
 #include "sections.hpp"
 #include "soft_string.hpp"
 #include "survey.hpp"
@@ -51,6 +55,8 @@ struct OscillatorDragParams {
     double coupling_tolerance = 1e-9;  ///< largest change of a friction factor between passes at convergence
     VibrationFrictionModel model = VibrationFrictionModel::friction_vector;
     Lubricant lubricant = Lubricant::wbm;  ///< Table 5's row (model table5)
+    VibrationSource source = VibrationSource::wave;  ///< the travelling-wave estimate or the dynamic model
+    OscillatorResponseParams dynamic;                 ///< the dynamic model's settings (source dynamic)
 
     static constexpr std::size_t max_coupling_passes = 50;
     static constexpr std::array<Field<OscillatorDragParams>, 3> fields();
@@ -72,13 +78,17 @@ inline constexpr std::array<Field<OscillatorDragParams>, 3> OscillatorDragParams
 struct OscillatorDragResult {
     TorqueDragResult plain;     ///< without the tools
     TorqueDragResult vibrated;  ///< with them
-    std::vector<double> vibration_amplitude;  ///< per element, m/s: all tools together
+    /// per element, m/s: all tools together (source dynamic: the amplitude the friction sees, see
+    /// OscillatorResponse::amplitude; the first harmonics are in `responses`)
+    std::vector<double> vibration_amplitude;
     FrictionMultipliers multipliers;          ///< per element, what the vibrated run used
     std::vector<double> reduction;            ///< per element: 1 - factor of the friction against the motion
     double zone_top = 0.0, zone_bottom = 0.0;  ///< m MD: the first and last element reduced past the threshold
     double zone_length = 0.0;                  ///< m: the length of the elements reduced past it (0: no zone)
     std::size_t coupling_passes = 0;
     bool converged = true;  ///< false: the factors still moved by more than the tolerance after the last pass
+    VibrationSource source = VibrationSource::wave;
+    std::vector<OscillatorResponse> responses;  ///< source dynamic: each active tool's run, in the tools' order
 
     bool has_zone() const { return zone_length > 0.0; }
     double hook_load_change() const { return vibrated.hook_load() - plain.hook_load(); }            ///< N
@@ -96,18 +106,41 @@ struct SlidingTransfer {
 class OscillatorDrag {
 public:
     OscillatorDrag(const Survey& survey, const DrillString& string, std::size_t elements)
-        : soft_(survey, string, elements), wave_(string, elements) {}
+        : soft_(survey, string, elements), wave_(string, elements), response_(survey, string) {}
 
     const SoftString& soft_string() const { return soft_; }
     const AxialWave& axial_wave() const { return wave_; }
+    const OscillatorResponseModel& response_model() const { return response_; }
+
+    /// Source dynamic: each active tool's steady-state run under operation `op` into `responses`, and all tools'
+    /// amplitude at each element's middle into `amplitude` (a^2 = sum a_i^2).
+    void dynamic_amplitude(Operation op, const SoftStringParams& p, const std::vector<HydraulicOscillator>& tools,
+                           const OscillatorDragParams& o, std::vector<OscillatorResponse>& responses,
+                           std::vector<double>& amplitude) const {
+        const std::size_t n = soft_.elements();
+        amplitude.assign(n, 0.0);
+        responses.clear();
+        for (const HydraulicOscillator& tool : tools) {
+            if (!(tool.force_amplitude > 0.0)) continue;
+            responses.push_back(response_.response(op, p, tool, o.dynamic));
+            for (std::size_t e = 0; e < n; ++e) {
+                const double a = responses.back().amplitude_at(soft_.element_mid_depth(e));
+                amplitude[e] += a * a;
+            }
+        }
+        for (double& a : amplitude) a = std::sqrt(a);
+    }
 
     /// The operation without and with the tools (any number; none or zero force: the plain run, exactly).
     OscillatorDragResult run(Operation op, const SoftStringParams& p, const std::vector<HydraulicOscillator>& tools,
                              const OscillatorDragParams& o = {}) const {
         check(op, p, tools, o);
         OscillatorDragResult out;
+        out.source = o.source;
         soft_.run(op, p, out.plain);
         Coupled state;
+        if (o.source == VibrationSource::dynamic && any_active(tools))
+            dynamic_amplitude(op, p, tools, o, out.responses, state.fixed);
         couple(op, p, tools, o, state);
         out.vibrated = std::move(state.result);
         out.vibration_amplitude = std::move(state.amplitude);
@@ -154,6 +187,14 @@ public:
         q.weight_on_bit = 0.0;
         check(Operation::sliding_drilling, q, tools, o);
         Coupled state;
+        if (o.source == VibrationSource::dynamic && any_active(tools)) {
+            // the dynamic amplitude once, at the plain string's weight on bit for this hook load
+            OscillatorDragParams plain = o;
+            plain.source = VibrationSource::wave;
+            q.weight_on_bit = weight_on_bit_at(hook_load, p, {}, plain);
+            std::vector<OscillatorResponse> responses;
+            dynamic_amplitude(Operation::sliding_drilling, q, tools, o, responses, state.fixed);
+        }
         const auto residual = [&](double wob) {
             q.weight_on_bit = wob;
             couple(Operation::sliding_drilling, q, tools, o, state);
@@ -187,13 +228,22 @@ private:
         TorqueDragResult result;
         FrictionMultipliers multipliers;  // empty: ones (also the warm start of the next solve)
         std::vector<double> amplitude, wall, surface, one_tool, next_axial, next_circumferential;
+        std::vector<double> fixed;  // source dynamic: the amplitude held through the passes
         std::size_t passes = 0;
         bool converged = true;
     };
 
+    static bool any_active(const std::vector<HydraulicOscillator>& tools) {
+        for (const HydraulicOscillator& tool : tools)
+            if (tool.force_amplitude > 0.0) return true;
+        return false;
+    }
+
     void check(Operation op, const SoftStringParams& p, const std::vector<HydraulicOscillator>& tools,
                const OscillatorDragParams& o) const {
         validate_fields("OscillatorDragParams", o, OscillatorDragParams::fields());
+        if (o.source == VibrationSource::dynamic)
+            for (const HydraulicOscillator& tool : tools) response_.check(op, p, tool, o.dynamic);
         validate_fields("SoftStringParams", p, SoftStringParams::fields());
         const std::vector<double> zero(soft_.elements(), 0.0);
         for (const HydraulicOscillator& tool : tools) wave_.check(tool, zero, 0.0, {}, o.bit_reflection);
@@ -227,11 +277,15 @@ private:
             }
             for (std::size_t e = 0; e < n; ++e)
                 s.wall[e] = SoftString::friction_factor(soft_.element_mid_depth(e), p) * s.result.side_force_per_length[e];
-            for (const HydraulicOscillator& tool : tools) {
-                wave_.amplitude(tool, s.wall, kin.axial_speed, s.surface, o.bit_reflection, s.one_tool);
-                for (std::size_t e = 0; e < n; ++e) s.amplitude[e] += s.one_tool[e] * s.one_tool[e];
+            if (!s.fixed.empty()) {
+                s.amplitude = s.fixed;
+            } else {
+                for (const HydraulicOscillator& tool : tools) {
+                    wave_.amplitude(tool, s.wall, kin.axial_speed, s.surface, o.bit_reflection, s.one_tool);
+                    for (std::size_t e = 0; e < n; ++e) s.amplitude[e] += s.one_tool[e] * s.one_tool[e];
+                }
+                for (double& a : s.amplitude) a = std::sqrt(a);
             }
-            for (double& a : s.amplitude) a = std::sqrt(a);
             factors(kin, s.amplitude, o, s.next_axial, s.next_circumferential);
             double change = 0.0;
             for (std::size_t e = 0; e < n; ++e) {
@@ -277,6 +331,7 @@ private:
 
     SoftString soft_;
     AxialWave wave_;
+    OscillatorResponseModel response_;
 };
 
 }  // namespace frictionsim
