@@ -22,8 +22,8 @@
 
 Every command takes ``-q`` (errors only, no progress bar) and ``-v`` / ``-vv`` (the library's log messages,
 ``logging.getLogger("frictionsim")``, at INFO / DEBUG on stderr). Progress bars go to stderr and only to a
-terminal. ``--jobs N`` runs a scenario's cases or a sweep's points in N processes; the results are those of
-``--jobs 1``, in the same order.
+terminal. ``--jobs N`` runs a scenario's cases or a sweep's points in N processes (at most one per CPU this
+process may use, with a warning when fewer than asked); the results are those of ``--jobs 1``, in the same order.
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
 target and moved into place (files already in the target that the command does not write are left alone).
@@ -176,18 +176,37 @@ def _imap(jobs: int, count: int) -> Iterator[Callable[[Callable, Iterable], Iter
     """An ordered ``imap(function, items)``: the built-in map for one job, else a pool of ``jobs`` processes
     (spawned: nothing of this process's threads or handlers is inherited). Leaving the block - Ctrl-C, SIGTERM,
     an error - terminates the workers, so nothing keeps running after the command."""
-    if jobs == 1 or count <= 1:
+    workers = _workers(jobs, count)
+    if workers == 1:
         yield map
         return
     import multiprocessing
 
-    pool = multiprocessing.get_context("spawn").Pool(min(jobs, count), initializer=_ignore_interrupts)
+    pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_ignore_interrupts)
     try:
         yield pool.imap
         pool.close()
     finally:
         pool.terminate()
         pool.join()
+
+
+def _cpus() -> int:
+    """The CPUs this process may run on (its affinity mask: a container's or taskset's share, not the machine's)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):  # macOS, Windows
+        return max(1, os.cpu_count() or 1)
+
+
+def _workers(jobs: int, count: int) -> int:
+    """Processes for ``count`` items asked to run in ``jobs``: at most one per item and one per CPU (more only
+    share the CPUs and cost a process each: --jobs 1000 must not start 1000 interpreters)."""
+    cpus, wanted = _cpus(), min(jobs, count)
+    if wanted > cpus:
+        log.warning("--jobs %d: this process may use %d CPU%s; running %d processes", jobs, cpus,
+                    "" if cpus == 1 else "s", cpus)
+    return max(1, min(wanted, cpus))
 
 
 def _jobs(value: str) -> int:
@@ -221,8 +240,19 @@ def _common(jobs: bool = False) -> argparse.ArgumentParser:
                         help="the library's log messages (-v: INFO, -vv: DEBUG) on stderr")
     if jobs:
         common.add_argument("-j", "--jobs", type=_jobs, default=1, metavar="N",
-                            help="run in N processes (default 1); the results are the same")
+                            help="run in N processes (default 1; at most one per CPU); the results are the same")
     return common
+
+
+def _placement() -> argparse.ArgumentParser:
+    """--out and --allow-outside of the commands that read a file naming its own output.directory (run, sweep)."""
+    placement = argparse.ArgumentParser(add_help=False)
+    placement.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, "
+                                                    "relative to the file's folder and confined to it, else "
+                                                    "out/<file stem>)")
+    placement.add_argument("--allow-outside", action="store_true",
+                           help="let the file's output.directory be absolute or lead out of the file's folder")
+    return placement
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -238,16 +268,12 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="count", default=0,
                         help="the library's log messages (-v: INFO, -vv: DEBUG) on stderr")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")
-    common, parallel = [_common()], [_common(jobs=True)]
+    common, parallel = [_common()], [_common(jobs=True), _placement()]
 
     run = commands.add_parser("run", parents=parallel, help="simulate a scenario file, write tables and PNG plots",
                               description="Simulate every case of a TOML scenario file; write per-case time "
                                           "series, summary.csv, PNG plots and metadata.json; print the summary.")
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    run.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, relative to "
-                                              "the file's folder and confined to it, else out/<file stem>)")
-    run.add_argument("--allow-outside", action="store_true",
-                     help="let the file's output.directory be absolute or lead out of the file's folder")
     run.add_argument("--timeout", type=float, metavar="SECONDS",
                      help="wall-clock budget of each simulation (overrides the file's solver.timeout)")
     run.add_argument("--format", choices=FORMATS, default="csv",
@@ -261,10 +287,6 @@ def _parser() -> argparse.ArgumentParser:
                                             "every case at every grid point; write sweep.csv (one row per point and "
                                             "case), sweep.png, sweep.toml and metadata.json.")
     sweep.add_argument("file", type=Path, help="sweep file (TOML)")
-    sweep.add_argument("--out", type=Path, help="output directory (default: the file's output.directory, relative "
-                                                "to the file's folder and confined to it, else out/<file stem>)")
-    sweep.add_argument("--allow-outside", action="store_true",
-                       help="let the file's output.directory be absolute or lead out of the file's folder")
     sweep.set_defaults(command=_sweep)
 
     scenarios = commands.add_parser("scenarios", parents=common, help="the packaged example scenarios: list, copy",
@@ -428,6 +450,12 @@ def _run(args) -> int:
     return 0
 
 
+def _si_axis(sweep, key: str) -> List[Any]:
+    """The SI values of a grid key, in the file's order."""
+    si_of = {point[key]: si_point[key] for point, si_point in zip(sweep.points, sweep.si_points)}
+    return [si_of[value] for value in sweep.axes[key]]
+
+
 def _run_case_or_error(case):
     """run_case in a worker: the errors a case can end with come back as values, in order with the others."""
     from .scenario import run_case
@@ -486,6 +514,8 @@ def _sweep(args) -> int:
             args, directory, rigs={f"{case.name} at point 0": case.build() for case in sweep.scenarios[0].cases},
             solver_options=dataclasses.asdict(first.solver),
             extra={"sweep": {"file": str(args.file), "grid": {k: list(v) for k, v in sweep.axes.items()},
+                             "grid_si": {k: {"unit": sweep.si_units[k], "values": _si_axis(sweep, k)}
+                                         for k in sweep.given_with_units},
                              "cases": list(sweep.cases), "points": count, "jobs": args.jobs}})
 
     written = _write(out, write)
@@ -502,13 +532,12 @@ def _packaged():
 
 
 def _scenarios_list(args) -> int:
-    import tomllib
+    from .scenario.parser import ScenarioError, loads_toml
 
     for name, entry in _packaged().items():
-        text = entry.read_text(encoding="utf-8")
         try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError:  # pragma: no cover - package data is tested
+            data = loads_toml(entry.read_text(encoding="utf-8"), source=entry.name)
+        except ScenarioError:  # pragma: no cover - package data is tested
             data = {}
         kind = "sweep" if "grid" in data else "scenario"
         print(f"{name:34s} {kind:8s} {data.get('title', '')}")
@@ -594,6 +623,7 @@ def _fit(args) -> int:
     if args.normal_force is None:
         columns["normal"] = args.normal
     record = _read_record(args.data, columns)
+    data_file = _file_record(args.data)  # what was read, before the fit's minutes in which it could change
     normal = record["normal"] if args.normal_force is None else args.normal_force
     try:
         result = identify(args.law, record["time"], record["velocity"], record["force"], normal, method=args.method,
@@ -616,13 +646,27 @@ def _fit(args) -> int:
         return paths + _metadata(args, directory, rigs=[result.rig] if result.rig is not None else [],
                                  stats={"n_evaluations": result.n_evaluations, "n_failed": result.n_failed,
                                         "elapsed_s": result.elapsed},
-                                 extra={"data": str(args.data), "law": repr(result.law), "method": result.method,
+                                 extra={"data": str(args.data), "data_file": data_file,
+                                        "law": repr(result.law), "method": result.method,
                                         "success": result.success, "message": result.message,
                                         "rms_residual_N": result.rms_residual, "r_squared": result.r_squared})
 
     written = _write(out, write)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0 if result.success else 1
+
+
+def _file_record(path: Path) -> Dict[str, Any]:
+    """What identifies an input file's content: its sha256 and size (a path alone names whatever is there later)."""
+    import hashlib
+
+    digest = hashlib.sha256()
+    size = 0
+    with open(path, "rb") as file:
+        for block in iter(lambda: file.read(1 << 20), b""):
+            digest.update(block)
+            size += len(block)
+    return {"path": str(path), "sha256": digest.hexdigest(), "size_bytes": size}
 
 
 def _assignments(spec: str) -> Dict[str, float]:

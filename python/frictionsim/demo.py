@@ -110,9 +110,12 @@ def format_table(frame, columns: Sequence[Tuple[str, str, str]]) -> str:
 def table5_refit():
     """Table 5 as printed beside its refit from Table 4 (:func:`frictionsim.fit.fit_power_law`), per lubricant.
 
-    Columns: lubricant, lubricant_printed, slope_printed, slope_refit (= c), intercept_printed, intercept_refit
-    (= log10 eta'), eta_prime_printed, eta_prime_refit, r_squared_printed, r_squared_refit,
-    adjusted_r_squared_refit, n_runs, velocity_ratio_min, velocity_ratio_max (v_a/v_d fitted).
+    Columns: lubricant, lubricant_printed, slope_printed, slope_refit (= c), slope_stderr, intercept_printed,
+    intercept_refit (= log10 eta'), intercept_stderr, eta_prime_printed, eta_prime_refit, eta_prime_stderr,
+    eta_eq15_refit (eq 15's eta = eta' (2 pi)^c), eta_eq15_stderr, r_squared_printed, r_squared_refit,
+    adjusted_r_squared_refit, n_runs, velocity_ratio_min, velocity_ratio_max (v_a/v_d fitted). The standard
+    errors are fit_power_law's (least squares, one standard error; the paper prints none): five runs per line
+    leave them wide, and a refit without them reads as more certain than Table 4 allows.
     """
     import pandas as pd
 
@@ -123,9 +126,12 @@ def table5_refit():
     printed = table5().set_index("lubricant")
     frame = pd.DataFrame({
         "lubricant_printed": printed["lubricant_printed"],
-        "slope_printed": printed["slope"], "slope_refit": fits["slope"],
+        "slope_printed": printed["slope"], "slope_refit": fits["slope"], "slope_stderr": fits["slope_stderr"],
         "intercept_printed": printed["intercept"], "intercept_refit": fits["intercept"],
+        "intercept_stderr": fits["intercept_stderr"],
         "eta_prime_printed": printed["eta_prime"], "eta_prime_refit": fits["eta_prime"],
+        "eta_prime_stderr": fits["eta_prime_stderr"],
+        "eta_eq15_refit": fits["eta_eq15"], "eta_eq15_stderr": fits["eta_eq15_stderr"],
         "r_squared_printed": printed["r_squared"], "r_squared_refit": fits["r_squared"],
         "adjusted_r_squared_refit": fits["adjusted_r_squared"], "n_runs": fits["n_runs"],
         "velocity_ratio_min": fits["velocity_ratio_min"], "velocity_ratio_max": fits["velocity_ratio_max"],
@@ -135,17 +141,20 @@ def table5_refit():
 
 
 TABLE5_COLUMNS = [("lubricant", "lubricant", "s"), ("slope_printed", "slope (printed)", "g"),
-                  ("slope_refit", "refit", ".5f"), ("intercept_printed", "intercept (printed)", "g"),
-                  ("intercept_refit", "refit", ".5f"), ("eta_prime_printed", "eta' (printed)", "g"),
-                  ("eta_prime_refit", "refit", ".4f"), ("r_squared_printed", "R^2 (printed)", "g"),
-                  ("r_squared_refit", "refit", ".4f"), ("adjusted_r_squared_refit", "adj. R^2", ".4f")]
+                  ("slope_refit", "refit", ".5f"), ("slope_stderr", "+-", ".3f"),
+                  ("intercept_printed", "intercept (printed)", "g"), ("intercept_refit", "refit", ".5f"),
+                  ("intercept_stderr", "+-", ".3f"), ("eta_prime_printed", "eta' (printed)", "g"),
+                  ("eta_prime_refit", "refit", ".4f"), ("eta_prime_stderr", "+-", ".3f"),
+                  ("r_squared_printed", "R^2 (printed)", "g"), ("r_squared_refit", "refit", ".4f"),
+                  ("adjusted_r_squared_refit", "adj. R^2", ".4f")]
 
 
 def table5_report(refit) -> str:
     """The refit table as text (printed values as printed), with a note on the R^2 column."""
     return ("Table 5 refit from Table 4 (least squares log10 mu_df = c log10(v_a/v_d) + log10 eta', per lubricant)\n"
             + format_table(refit, TABLE5_COLUMNS)
-            + "\nslopes and intercepts reproduce Table 5; the printed R^2 are 0.04-0.09 below the fits' R^2 "
+            + "\nslopes and intercepts reproduce Table 5; +- one standard error of the refit (least squares, five "
+              "runs per line; the paper prints none); the printed R^2 are 0.04-0.09 below the fits' R^2 "
               "(closest: adjusted R^2; see frictionsim.fit.power_law)")
 
 

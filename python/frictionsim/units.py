@@ -25,12 +25,17 @@ naming the extra.
 Angles are a dimension here (pint's own registry counts the radian as a pure number, so it would turn 1 Hz into
 1 rad/s and 1 rpm into 0.105 Hz): rpm converts to rad/s, a frequency in Hz does not. The drilling units pint lacks
 or defines otherwise are in :data:`DRILLING_UNITS` (ppg, pcf, sg, klbf, oil barrel bbl) and the string rules of
-:func:`quantity` (``ft-lbf``, ``deg/30m``, ``deg/100ft``, pipe sizes ``5 1/2 in``).
+:func:`quantity` (``ft-lbf``, ``deg/30m``, ``deg/100ft``, ``lbf/100ft^2``, pipe sizes ``5 1/2 in``).
+
+Text is read with bounds, since pint evaluates its arithmetic: at most :data:`MAX_TEXT_LENGTH` characters, and
+exponents in floating point (``10**10**10`` overflows at once instead of computing a ten-billion-digit integer),
+each refused as a :class:`UnitError` naming the parameter, as is a value beyond the range of a double.
 """
 
 from __future__ import annotations
 
 import functools
+import math
 import re
 from typing import Any, Callable, Dict, List, Mapping, Optional, Tuple
 
@@ -38,8 +43,8 @@ import numpy as np
 
 from .errors import InvalidParameterError
 
-__all__ = ["DRILLING_UNITS", "TABLE_UNITS", "UnitError", "UnitsUnavailableError", "convert", "describe", "install", "quantity",
-           "registry", "to_si", "units_of"]
+__all__ = ["DRILLING_UNITS", "MAX_TEXT_LENGTH", "TABLE_UNITS", "UnitError", "UnitsUnavailableError", "convert",
+           "describe", "install", "quantity", "registry", "to_si", "units_of"]
 
 #: Every unit string of the engine's parameter tables (C++ ``Field::unit``, include/frictionsim) and of the few
 #: arguments no table describes (``deg``, ``rad/m``): (its pint expression, what it measures, the dimension's name).
@@ -99,8 +104,15 @@ DRILLING_UNITS: Tuple[str, ...] = (
 _MIXED = re.compile(r"(?<![\d.])(\d+)(?:\s+|\s*-\s*)(\d+)\s*/\s*(\d+)(?=\s*[A-Za-z])")
 #: "ft-lbf", "ft·lbf": a product of units (pint would read the hyphen as a minus sign)
 _PRODUCT = re.compile(r"(?<=[A-Za-z])\s*[-\u00b7\u22c5]\s*(?=[A-Za-z])")
-#: "deg/30m", "deg/100 ft": per a course of that length (pint would read deg/30*m)
-_PER_COURSE = re.compile(r"(?<=[A-Za-z])\s*/\s*(\d+(?:\.\d*)?)\s*([A-Za-z]+)")
+#: "deg/30m", "deg/100 ft", "lbf/100ft^2": per a course (an area) of that size (pint would read deg/30*m); the
+#: unit keeps its exponent: lbf/(100 ft^2), the yield point's unit, not lbf/(100 ft)^2
+_PER_COURSE = re.compile(r"(?<=[A-Za-z])\s*/\s*(\d+(?:\.\d*)?)\s*([A-Za-z]+(?:\s*(?:\^|\*\*)\s*\d+)?)")
+#: the first number of an exponent ("**10", "^(2", "**-3"): made a float, so that "10**10**10" overflows at once
+#: (OverflowError, a string that cannot be read) instead of pint computing a ten-billion-digit integer; the rest of
+#: an exponent follows the float through the arithmetic
+_INTEGER_EXPONENT = re.compile(r"(\*\*|\^)([\s(+-]*)(\d+)(?![\d.eE])")
+#: the longest unit string read: pint's parser and its integers grow with the text (a 400-digit magnitude)
+MAX_TEXT_LENGTH = 200
 
 
 class UnitsUnavailableError(ImportError):
@@ -115,7 +127,8 @@ class UnitError(InvalidParameterError, TypeError):
 
 def _preprocess(text: str) -> str:
     text = _MIXED.sub(r"(\1 + \2/\3)", text.replace("\u00b0", " deg "))
-    return _PER_COURSE.sub(r"/(\1 \2)", _PRODUCT.sub("*", text))
+    text = _PER_COURSE.sub(r"/(\1 \2)", _PRODUCT.sub("*", text))
+    return _INTEGER_EXPONENT.sub(r"\1\2\3.0", text)
 
 
 @functools.lru_cache(maxsize=None)
@@ -236,10 +249,12 @@ def _registry_for(parameter: str, value: Any):
 def _parse(text: str):
     """The quantity a string says, or the problem (a str) why it says none."""
     ureg = registry()
+    if len(text) > MAX_TEXT_LENGTH:
+        return f"cannot read a value with a unit from {len(text)} characters (at most {MAX_TEXT_LENGTH})"
     try:
         parsed = ureg.parse_expression(text)
     except Exception as error:  # pint's parser raises anything from AssertionError to TokenError on garbage
-        return f"cannot read {text!r} as a value with a unit ({error})"
+        return f"cannot read {_shown(text)} as a value with a unit ({type(error).__name__}: {error})"
     return parsed if _is_quantity(parsed) else ureg.Quantity(parsed)
 
 
@@ -262,8 +277,19 @@ def _in_unit(given, unit: str, shown: str) -> Tuple[Any, Optional[str]]:
     if given.dimensionality != target.dimensionality:
         return None, f"expected {describe(unit)}, got {shown} [{_dimension_name(given.dimensionality)}]"
     # the same unit: the very number (no factor of 1.0 through base units)
-    magnitude = given.magnitude if str(given.units) == str(target) else given.to(target).magnitude
-    return _number(magnitude), None
+    try:
+        magnitude = given.magnitude if str(given.units) == str(target) else given.to(target).magnitude
+        number = _number(magnitude)
+    except OverflowError:  # an integer beyond a double ('999...9 N', 400 digits)
+        return None, f"{_shown(shown)} is beyond the range of a double in {unit}"
+    if isinstance(number, float) and not math.isfinite(number) and math.isfinite(given.magnitude):
+        # overflowed in the conversion (an inf or NaN given stays for the engine's own rule to name)
+        return None, f"{_shown(shown)} is not a finite value in {unit}"
+    return number, None
+
+
+def _shown(text: str) -> str:
+    return repr(text) if len(text) <= 40 else repr(text[:37] + "...")
 
 
 def _is_number(text: str) -> bool:
@@ -281,9 +307,26 @@ def _number(magnitude: Any) -> Any:
 
 def convert(value: Any, from_unit: str, to_unit: str) -> Any:
     """A number (or array) in ``from_unit`` expressed in ``to_unit``, e.g. a result in field units:
-    ``convert(result.hook_load, "N", "klbf")``."""
+    ``convert(result.hook_load, "N", "klbf")``.
+
+    Raises :class:`UnitError` naming ``from_unit`` or ``to_unit`` when it is no unit, or when the two measure
+    different things (not pint's own errors)."""
+    import pint
+
     ureg = registry()
-    return _number(ureg.Quantity(np.asarray(value, dtype=float), _target(from_unit)).to(_target(to_unit)).magnitude)
+    units = {}
+    for name, unit in (("from_unit", from_unit), ("to_unit", to_unit)):
+        try:
+            units[name] = _target(unit)
+        except Exception as error:  # pint raises UndefinedUnitError, DefinitionSyntaxError, ... on garbage
+            raise UnitError(f"{name}: cannot read {unit!r} as a unit ({type(error).__name__}: {error})",
+                            name) from None
+    try:
+        return _number(ureg.Quantity(np.asarray(value, dtype=float), units["from_unit"]).to(units["to_unit"]).magnitude)
+    except pint.errors.DimensionalityError:
+        raise UnitError(f"to_unit: cannot convert {describe(from_unit)} "
+                        f"[{_dimension_name(units['from_unit'].dimensionality)}] to {describe(to_unit)} "
+                        f"[{_dimension_name(units['to_unit'].dimensionality)}]", "to_unit") from None
 
 
 def units_of(source: Any, routine: str = "__init__") -> Dict[str, str]:

@@ -1,10 +1,13 @@
 """The command line's everyday jobs (issue 15 item 7, item 3's CLI side): -q / -v, progress bars, --jobs, Ctrl-C,
 ``scenarios list|copy``, ``sweep``, ``fit`` and metadata.json beside every command's outputs."""
 
+import argparse
+import hashlib
 import io
 import json
 import logging
 import math
+import os
 import signal
 import subprocess
 import sys
@@ -59,12 +62,14 @@ friction = { type = "coulomb", mu = 0.3 }
 name = "dahl"
 friction = { type = "dahl", mu = 0.3, tangential_stiffness = 4e4 }
 """
+#: KINEMATIC for `run` where no test looks at the plots: drawing them is ~95 % of such a run's time
+RUN = KINEMATIC + "[output]\nplots = []\n"
 
 
 # --------------------------------------------------------------------------------------------- -q, -v, progress
 def test_verbose_logs_the_cases_and_quiet_silences_stderr(tmp_path, capsys):
     source = tmp_path / "k.toml"
-    source.write_text(KINEMATIC)
+    source.write_text(RUN)
     logger = logging.getLogger("frictionsim")
     level, handlers = logger.level, list(logger.handlers)
     assert main(["-v", "run", str(source), "--out", str(tmp_path / "a")]) == 0
@@ -82,7 +87,7 @@ class _Terminal(io.StringIO):
 
 def test_progress_bar_only_on_a_terminal_and_not_with_quiet(tmp_path, monkeypatch):
     source = tmp_path / "k.toml"
-    source.write_text(KINEMATIC)
+    source.write_text(RUN)
     for quiet, shown in (([], True), (["-q"], False)):
         terminal = _Terminal()
         monkeypatch.setattr(sys, "stderr", terminal)
@@ -94,7 +99,7 @@ def test_progress_bar_only_on_a_terminal_and_not_with_quiet(tmp_path, monkeypatc
 # --------------------------------------------------------------------------------------------------------- --jobs
 def test_jobs_gives_the_same_files_as_one_process(tmp_path):
     source = tmp_path / "k.toml"
-    source.write_text(KINEMATIC)
+    source.write_text(RUN)
     assert main(["run", str(source), "--out", str(tmp_path / "one")]) == 0
     assert main(["run", str(source), "--jobs", "2", "--out", str(tmp_path / "two")]) == 0
     files = [f for f in _files(tmp_path / "one") if f.endswith(".csv")]
@@ -105,6 +110,32 @@ def test_jobs_gives_the_same_files_as_one_process(tmp_path):
     closed_form = 100 * (1 - 2 / math.pi * math.asin(1e-3 / 0.01))
     assert summary.loc["coulomb", "reduction_percent"] == pytest.approx(closed_form, rel=1e-6)
     assert _metadata(tmp_path / "two")["command"].endswith("--jobs 2 --out " + str(tmp_path / "two"))
+
+
+def test_jobs_are_capped_at_the_cpus_this_process_may_use(monkeypatch, caplog):
+    from frictionsim import cli
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)  # a 2-CPU share
+    with caplog.at_level(logging.WARNING, logger="frictionsim"):
+        assert cli._workers(2, 10) == 2 and cli._workers(8, 1) == 1 and not caplog.records
+        assert cli._workers(1000, 10) == 2  # not a thousand interpreters
+    assert [r.getMessage() for r in caplog.records] == ["--jobs 1000: this process may use 2 CPUs; running 2 "
+                                                        "processes"]
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {3}, raising=False)
+    with cli._imap(64, 10) as imap:  # one CPU: no pool at all
+        assert imap is map
+    monkeypatch.delattr(os, "sched_getaffinity", raising=False)  # macOS, Windows: the machine's count
+    monkeypatch.setattr(os, "cpu_count", lambda: 3)
+    assert cli._workers(16, 100) == 3
+
+
+def test_run_and_sweep_share_their_output_options():
+    from frictionsim import cli
+
+    commands = next(a for a in cli._parser()._actions if isinstance(a, argparse._SubParsersAction)).choices
+    options = {name: {a.dest: (a.option_strings, a.help) for a in commands[name]._actions
+                      if a.dest in ("out", "allow_outside", "jobs")} for name in ("run", "sweep")}
+    assert options["run"] == options["sweep"] and len(options["run"]) == 3
 
 
 def test_jobs_must_be_a_positive_whole_number(capsys):
@@ -141,7 +172,7 @@ def test_ctrl_c_exits_130_without_traceback_or_outputs(jobs, tmp_path):
         line = process.stderr.readline()  # "INFO: ...: long.toml: 2 cases": the command is about to simulate
         assert "2 cases" in line, line
         time.sleep(0.5)
-        if jobs == "2":
+        if jobs == "2" and len(os.sched_getaffinity(0)) >= 2:  # on one CPU --jobs 2 runs without a pool
             workers = _children(process.pid, at_least=2)
         process.send_signal(signal.SIGINT)
         _, err = process.communicate(timeout=60)
@@ -181,7 +212,7 @@ def _alive(pid):
 # ------------------------------------------------------------------------------------------------- provenance
 def test_every_command_writes_metadata_with_its_command_line(tmp_path, capsys):
     # (demo, fit-table5, sweep and fit: their own tests read metadata.json too)
-    (tmp_path / "k.toml").write_text(KINEMATIC)
+    (tmp_path / "k.toml").write_text(RUN)
     commands = {
         "run": ["run", str(tmp_path / "k.toml"), "--out", str(tmp_path / "run")],
         "torque-drag": ["torque-drag", str(ROOT / "examples" / "surveys" / "s_well.csv"), "--mu", "0.3",
@@ -219,7 +250,7 @@ def test_run_format_writes_the_time_series_in_it(format, suffix, tmp_path):
     except ImportError as missing:  # the optional extra frictionsim[io]
         pytest.skip(str(missing))
     source = tmp_path / "k.toml"
-    source.write_text(KINEMATIC)
+    source.write_text(RUN)
     assert main(["run", str(source), "--out", str(tmp_path / "csv")]) == 0
     assert main(["run", str(source), "--format", format, "--out", str(tmp_path / "o")]) == 0
     assert {"coulomb" + suffix, "dahl" + suffix, "metadata.json"} <= set(_files(tmp_path / "o"))
@@ -358,6 +389,46 @@ def test_sweep_of_a_parameter_only_the_selected_case_takes(tmp_path, capsys):
         assert value == pytest.approx(scenario.run_case(scenario.loads(text).cases[1]).mean_friction, rel=1e-9)
 
 
+def test_sweep_grid_in_field_units_is_tabled_and_plotted_in_si(tmp_path, caplog):
+    """A grid value with a unit ("10 klbf") runs in SI; sweep.csv's axis column holds the SI number (the text
+    beside it) and sweep.png is drawn over it, where before the column held the text and the plot was dropped."""
+    source = tmp_path / "u.toml"
+    steady = KINEMATIC.replace("velocity_amplitude = 0.01", "velocity_amplitude = 0.0")
+    source.write_text(f'cases = ["coulomb"]\n{steady}[grid]\n"rig.normal_force" = ["10 klbf", "5 kN", 50.0]\n'
+                      '[output]\ncolumns = ["F_df_N"]\n')
+    assert main(["sweep", str(source), "--out", str(tmp_path / "o")]) == 0
+    assert set(_files(tmp_path / "o")) == {"sweep.csv", "sweep.png", "sweep.toml", "metadata.json"}
+    frame = pd.read_csv(tmp_path / "o" / "sweep.csv")
+    assert list(frame.columns) == ["rig.normal_force", "rig.normal_force (given)", "case", "F_df_N"]
+    newtons = [10e3 * 0.45359237 * 9.80665, 5000.0, 50.0]  # klbf from the pound and g (NIST SP 811)
+    np.testing.assert_allclose(frame["rig.normal_force"], newtons, rtol=1e-10)  # CSV: 10 digits
+    assert list(frame["rig.normal_force (given)"]) == ["10 klbf", "5 kN", "50.0"]
+    # no velocity reversal: Coulomb slides at mu F_N throughout
+    np.testing.assert_allclose(frame["F_df_N"], 0.3 * frame["rig.normal_force"], rtol=1e-8)
+    grid = _metadata(tmp_path / "o")["extra"]["sweep"]
+    assert grid["grid"]["rig.normal_force"] == ["10 klbf", "5 kN", 50.0]
+    assert grid["grid_si"]["rig.normal_force"]["unit"] == "N"
+    np.testing.assert_allclose(grid["grid_si"]["rig.normal_force"]["values"], newtons, rtol=1e-15)
+    # a first key that is no number: the table still, the plot skipped with a message saying why
+    other = tmp_path / "m.toml"
+    other.write_text(KINEMATIC + '[grid]\n"solver.method" = ["dormand_prince", "cvode_bdf"]\n')
+    with caplog.at_level(logging.WARNING, logger="frictionsim"):
+        assert main(["sweep", str(other), "--out", str(tmp_path / "m")]) == 0
+    assert "sweep.png" not in _files(tmp_path / "m")
+    assert "m: no sweep.png: the first grid key 'solver.method' is not numeric" in caplog.text
+
+
+def test_sweep_value_that_would_hang_pint_is_refused_at_once(tmp_path, capsys):
+    """10**10**10 as a grid value: pint computed a ten-billion-digit integer and `frictionsim sweep` hung."""
+    source = tmp_path / "h.toml"
+    source.write_text(KINEMATIC + '[grid]\n"rig.normal_force" = ["50 N", "10**10**10 N"]\n')
+    assert main(["sweep", str(source), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"error: {source}: grid.\"rig.normal_force\"[1]: cannot read '10**10**10 N' as a value "
+                          "with a unit (OverflowError"), err
+    assert _files(tmp_path) == ["h.toml"]
+
+
 BAD_SWEEPS = [
     ("no grid", KINEMATIC, "grid", "is required"),
     ("unknown section", SWEEP.replace('"friction.mu"', '"solvr.mu"'), 'grid."solvr.mu"', "section one of"),
@@ -426,7 +497,12 @@ def test_fit_lugre_from_csv_with_named_columns(lugre_record, tmp_path, capsys):
     record = pd.read_csv(out / "fit_record.csv")
     assert np.sqrt(np.mean(record["residual"] ** 2)) == pytest.approx(0.27, rel=0.1)  # the residual is the noise
     assert "bristle_stiffness" in capsys.readouterr().out
-    assert _metadata(out)["extra"]["law"].startswith("LuGre(")
+    extra = _metadata(out)["extra"]
+    assert extra["law"].startswith("LuGre(")
+    # the data by content, not only by path: what was fitted can be checked against a file found later
+    content = data.read_bytes()
+    assert extra["data_file"] == {"path": str(data), "sha256": hashlib.sha256(content).hexdigest(),
+                                  "size_bytes": len(content)}
 
 
 def test_fit_bad_record_names_file_column_and_row(tmp_path, capsys):

@@ -75,6 +75,11 @@ GALLON = 231 * INCH**3  # m^3 (US liquid gallon)
     ("5 1/2 in", "m", 5.5 * INCH),  # pipe sizes: mixed numbers, not 5 * 1/2
     ("13-3/8 in", "m", 13.375 * INCH),
     ("1/2 in", "m", 0.5 * INCH),
+    # a course keeps its unit's exponent: the yield point's lbf/100 ft^2 is lbf/(100 ft^2), not lbf/(100 ft)^2
+    ("10 lbf/100ft^2", "Pa", 10 * LBF / (100 * FT**2)),
+    ("10 lbf/100 ft**2", "Pa", 10 * LBF / (100 * FT**2)),
+    ("2 m/s^2", "m/s^2", 2.0),
+    ("4 N*m^-1", "N/m", 4.0),
 ])
 def test_field_units_convert_to_the_si_values_worked_by_hand(text, unit, si):
     published = si == 119.826427  # the ppg factor as tables print it, to 9 digits
@@ -125,6 +130,46 @@ def test_angles_are_a_dimension_so_rpm_and_hz_do_not_mix():
         units.to_si("1 Hz", "rad/s", "x")
     with pytest.raises(fs.InvalidParameterError, match=r"expected a frequency \(Hz\), got 60 rpm \[angular speed\]"):
         units.to_si("60 rpm", "Hz", "x")
+
+
+def test_text_that_would_hang_or_overflow_is_refused_at_once_naming_the_parameter():
+    """pint evaluates the text's arithmetic: an integer power such as 10**10**10 ran for ever (a sweep file with it
+    hung `frictionsim sweep`), a 400-digit magnitude overflowed the double with an OverflowError traceback. Run
+    in a subprocess so that a regression fails on the timeout instead of hanging the suite."""
+    script = textwrap.dedent("""
+        from frictionsim import units
+        for text in ("10**10**10 N", "10^(10)^(10) N", "2 ** +(10)**(10) N", "9" * 190 + "**9**9 N"):
+            try:
+                units.to_si(text, "N", "normal_force")
+            except units.UnitError as error:
+                print(error.parameter, "|", error)
+    """)
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert len(lines) == 4, out.stdout
+    for line in lines:
+        assert line.startswith("normal_force | normal_force: cannot read '") and "OverflowError" in line, line
+    with pytest.raises(units.UnitError, match=r"^normal_force: cannot read a value with a unit from 402 "
+                                              r"characters \(at most 200\)$") as error:
+        units.to_si("9" * 400 + " N", "N", "normal_force")
+    assert error.value.parameter == "normal_force"
+    with pytest.raises(units.UnitError, match=r"^hook_load: .* is beyond the range of a double in N$"):
+        units.to_si(U.Quantity(10**400, "klbf"), "N", "hook_load")  # an integer no double holds
+    with pytest.raises(units.UnitError, match=r"^hook_load: '1e308 klbf' is not a finite value in N$"):
+        units.to_si("1e308 klbf", "N", "hook_load")  # a double, but not in newtons
+
+
+def test_convert_names_the_unit_at_fault_not_pint():
+    with pytest.raises(units.UnitError, match=r"^to_unit: cannot convert a force \(N\) \[force\] to a length "
+                                              r"\(m\) \[length\]$") as error:
+        units.convert(1.0, "N", "m")
+    assert error.value.parameter == "to_unit" and not isinstance(error.value, pint.errors.PintError)
+    with pytest.raises(units.UnitError, match=r"^from_unit: cannot read 'furlongz' as a unit") as error:
+        units.convert(1.0, "furlongz", "m")
+    assert error.value.parameter == "from_unit"
+    with pytest.raises(units.UnitError, match=r"^to_unit: cannot read 'm\*\*\*' as a unit"):
+        units.convert(1.0, "m", "m***")
 
 
 # -- the engine's classes take field units

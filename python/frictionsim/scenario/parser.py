@@ -11,7 +11,6 @@ import dataclasses
 import math
 import re
 import stat
-import sys
 from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -24,13 +23,13 @@ from .rigs import RIG_KINDS, friction_types, plots_of
 from .specs import AnalysisSpec, Case, FrictionSpec, OutputSpec, RigSpec, Scenario, SolverSpec, TABLES
 from .text import article, join, type_name
 
-if sys.version_info >= (3, 11):
+try:
     import tomllib
-else:  # pragma: no cover - exercised on Python < 3.11 only
+except ImportError:  # Python < 3.11: its backport, a dependency there (pyproject.toml)
     import tomli as tomllib
 
 __all__ = ["MAX_DATA_FILE_BYTES", "MAX_DESCRIPTION_CHARACTERS", "MAX_OUTPUT_POINTS", "MAX_TITLE_CHARACTERS",
-           "ScenarioError", "load", "loads", "parse"]
+           "ScenarioError", "load", "loads", "loads_toml", "parse", "read_toml"]
 
 #: Output rows a scenario may ask for: 1e7 rows of a few states are ~0.5 GB of CSV already.
 MAX_OUTPUT_POINTS = 1_000_000  # 1e7 took 4 minutes and 4.6 GB; 1e6 rows are ~100 MB of CSV per case
@@ -63,25 +62,38 @@ class ScenarioError(ValueError):
         super().__init__(f"{self.file}: {key}: {rule}" if key else f"{self.file}: {rule}")
 
 
-def load(path: Union[str, Path]) -> Scenario:
-    """Read and validate a scenario file. Raises :class:`ScenarioError` naming the file and key."""
+def read_toml(path: Union[str, Path], what: str = "scenario file") -> Tuple[str, Dict[str, Any]]:
+    """(the text, the tables) of the TOML file ``path`` (a scenario or sweep file: ``what`` names it in errors).
+    The one reader of the package's TOML files, so that each reads UTF-8 and speaks of a bad file alike (and
+    finds tomli on Python < 3.11). Raises :class:`ScenarioError` naming the file: unreadable, not UTF-8, or not
+    TOML."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except OSError as error:
-        raise ScenarioError(path, None, f"cannot read the scenario file ({error.strerror or error})") from None
+        raise ScenarioError(path, None, f"cannot read the {what} ({error.strerror or error})") from None
     except UnicodeDecodeError as error:
         raise ScenarioError(path, None, f"must be UTF-8 text (TOML); byte {error.start} is not") from None
-    return loads(text, source=path)
+    return text, loads_toml(text, source=path)
+
+
+def loads_toml(text: str, *, source: Optional[Union[str, Path]] = None) -> Dict[str, Any]:
+    """The tables of TOML ``text``; a :class:`ScenarioError` naming ``source`` when it is not TOML."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ScenarioError(source, None, f"invalid TOML: {error}") from None
+
+
+def load(path: Union[str, Path]) -> Scenario:
+    """Read and validate a scenario file. Raises :class:`ScenarioError` naming the file and key."""
+    text, data = read_toml(path)
+    return dataclasses.replace(parse(data, source=Path(path)), text=text)
 
 
 def loads(text: str, *, source: Optional[Union[str, Path]] = None, name: Optional[str] = None) -> Scenario:
     """Parse and validate scenario TOML text. ``source`` names the file in errors and anchors relative paths."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise ScenarioError(source, None, f"invalid TOML: {error}") from None
-    return dataclasses.replace(parse(data, source=source, name=name), text=text)
+    return dataclasses.replace(parse(loads_toml(text, source=source), source=source, name=name), text=text)
 
 
 def parse(data: Mapping[str, Any], *, source: Optional[Union[str, Path]] = None,

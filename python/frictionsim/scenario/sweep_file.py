@@ -25,9 +25,13 @@ the scenario parser before anything runs; a bad value is reported against the gr
 (``grid."rig.amplitude"[2]: ...``). Errors raise :class:`~frictionsim.scenario.ScenarioError` naming the file,
 the key and the rule.
 
-Outputs (:meth:`SweepRun.write`): ``sweep.csv`` (one row per point and case: the grid keys, then the summary
-columns), ``sweep.png`` (``output.value`` against the first grid key, one line per case and combination of the
-other keys) and ``sweep.toml`` (the sweep file as run).
+A grid value may carry a unit as any scenario value may (``"rig.normal_force" = ["10 klbf", "5 kN"]``): the
+point's scenario reads it in SI, and so do the outputs (:attr:`SweepFile.si_points`).
+
+Outputs (:meth:`SweepRun.write`): ``sweep.csv`` (one row per point and case: the grid keys in SI, the text of
+a key given with units in a column ``<key> (given)``, then the summary columns), ``sweep.png`` (``output.value``
+against the first grid key, one line per case and combination of the other keys; skipped, with a log message,
+when that key is not numeric) and ``sweep.toml`` (the sweep file as run).
 """
 
 from __future__ import annotations
@@ -35,15 +39,17 @@ from __future__ import annotations
 import copy
 import dataclasses
 import itertools
+import logging
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from .parser import ScenarioError, parse
+from .. import units
+from .parser import _SCHEMA_UNITS, ScenarioError, loads_toml, parse, read_toml
+from .rigs import RIG_KINDS, friction_types
 from .specs import Scenario
 
 __all__ = ["GRID_SECTIONS", "MAX_POINTS", "SweepFile", "SweepOutput", "SweepRun", "load", "loads", "run",
@@ -57,6 +63,8 @@ MAX_POINTS = 10_000
 MAX_LINES = 12
 #: output.value when the file gives none: the first of these the summary has.
 DEFAULT_VALUES = ("F_df_N", "peak_ratio", "frequency_Hz")
+
+log = logging.getLogger("frictionsim")
 
 _SWEEP_KEYS = ("scenario", "cases", "grid")
 _SCENARIO_KEYS = ("rig", "friction", "solver", "analysis", "case")
@@ -79,8 +87,10 @@ class SweepFile:
     """A validated sweep file.
 
     ``axes``: grid key -> its values, in file order; ``log_axes``: the keys given with ``scale = "log"``;
-    ``points``: the grid values of each point (C order); ``scenarios``: the scenario of each point, validated,
-    holding only the selected cases; ``text``: the file's text (None when parsed from a mapping).
+    ``points``: the grid values of each point (C order), as given; ``si_points``: the same in SI, as the
+    point's scenario reads them (a value given with a unit, "10 klbf", is its number there, 44482.2...);
+    ``si_units``: grid key -> its SI unit where one was given with a unit; ``scenarios``: the scenario of each
+    point, validated, holding only the selected cases; ``text``: the file's text (None when parsed from a mapping).
     """
 
     name: str
@@ -93,6 +103,13 @@ class SweepFile:
     scenarios: Tuple[Scenario, ...]
     output: SweepOutput
     text: Optional[str] = None
+    si_points: Tuple[Dict[str, Any], ...] = ()
+    si_units: Dict[str, str] = dataclasses.field(default_factory=dict)
+
+    @property
+    def given_with_units(self) -> Tuple[str, ...]:
+        """The grid keys with a value given as text with a unit (their SI numbers differ from the text)."""
+        return tuple(key for key in self.axes if key in self.si_units)
 
     @property
     def grid_shape(self) -> Tuple[int, ...]:
@@ -106,17 +123,13 @@ class SweepFile:
 
 def load(path: Union[str, Path]) -> SweepFile:
     """Read and validate a sweep file. Raises :class:`ScenarioError` naming the file and key."""
-    path = Path(path)
-    return loads(_read(path, "sweep file"), source=path)
+    text, data = read_toml(path, "sweep file")
+    return dataclasses.replace(parse_sweep(data, source=Path(path)), text=text)
 
 
 def loads(text: str, *, source: Optional[Union[str, Path]] = None, name: Optional[str] = None) -> SweepFile:
     """Parse and validate sweep TOML text; ``source`` names the file in errors and anchors relative paths."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise ScenarioError(source, None, f"invalid TOML: {error}") from None
-    return dataclasses.replace(parse_sweep(data, source=source, name=name), text=text)
+    return dataclasses.replace(parse_sweep(loads_toml(text, source=source), source=source, name=name), text=text)
 
 
 def parse_sweep(data: Mapping[str, Any], *, source: Optional[Union[str, Path]] = None,
@@ -143,10 +156,10 @@ def parse_sweep(data: Mapping[str, Any], *, source: Optional[Union[str, Path]] =
         reference = Path(_typed(data["scenario"], str, "scenario", error))
         scenario_file = reference if reference.is_absolute() or source is None else source.parent / reference
         try:
-            base = tomllib.loads(_read(scenario_file, "scenario file"))
-        except tomllib.TOMLDecodeError as decode:
-            raise ScenarioError(scenario_file, None, f"invalid TOML: {decode}") from None
+            _, base = read_toml(scenario_file, "scenario file")
         except ScenarioError as unreadable:
+            if unreadable.rule.startswith("invalid TOML"):  # the scenario file's own fault: named as such
+                raise
             raise error("scenario", unreadable.rule) from None
         base.pop("output", None)  # the sweep writes its own outputs
     else:
@@ -170,16 +183,44 @@ def parse_sweep(data: Mapping[str, Any], *, source: Optional[Union[str, Path]] =
         points.append(point)
         scenarios.append(scenario)
     stem = name or (source.stem if source is not None else "sweep")
-    return SweepFile(stem, title, description, source, axes, log_axes, tuple(points), tuple(scenarios), output)
+    si_points, si_units = _si_points(axes, points, scenarios)
+    return SweepFile(stem, title, description, source, axes, log_axes, tuple(points), tuple(scenarios), output,
+                     si_points=si_points, si_units=si_units)
 
 
-def _read(path: Path, what: str) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise ScenarioError(path, None, f"cannot read the {what} ({error.strerror or error})") from None
-    except UnicodeDecodeError as error:
-        raise ScenarioError(path, None, f"must be UTF-8 text (TOML); byte {error.start} is not") from None
+def _si_points(axes: Mapping[str, Sequence[Any]], points: Sequence[Dict[str, Any]],
+               scenarios: Sequence[Scenario]) -> Tuple[Tuple[Dict[str, Any], ...], Dict[str, str]]:
+    """The points in SI, read back from each point's parsed scenario for the keys given as text with a unit."""
+    si_units: Dict[str, str] = {}
+    for key, values in axes.items():
+        if not any(isinstance(v, str) for v in values):
+            continue
+        read = [_read_back(scenario, key) for scenario in scenarios]
+        if all(isinstance(v, float) for v in read):  # a key with a unit (a method name stays text)
+            si_units[key] = _unit_of(scenarios[0], key) or "SI"
+    si_points = tuple({key: _read_back(scenario, key) if key in si_units else value for key, value in point.items()}
+                      for point, scenario in zip(points, scenarios))
+    return si_points, si_units
+
+
+def _read_back(scenario: Scenario, key: str) -> Any:
+    """The value the grid key holds in ``scenario``'s first case (every case holds the point's value)."""
+    section, _, name = key.partition(".")
+    case = scenario.cases[0]
+    if section in ("rig", "friction"):
+        return getattr(case, section).params.get(name)
+    return getattr(getattr(case, section), name, None)
+
+
+def _unit_of(scenario: Scenario, key: str) -> Optional[str]:
+    """The SI unit of a grid key, as the scenario parser converts it."""
+    section, _, name = key.partition(".")
+    case = scenario.cases[0]
+    if section == "rig":
+        return RIG_KINDS[case.rig.type].units.get(name)
+    if section == "friction":
+        return units.units_of(friction_types()[case.friction.type].make).get(name)
+    return _SCHEMA_UNITS.get(name)
 
 
 def _typed(value: Any, kind: type, key: str, error: Callable[..., ScenarioError]) -> Any:
@@ -369,20 +410,24 @@ class SweepRun:
         return next((v for v in DEFAULT_VALUES if v in first), None)
 
     def frame(self):
-        """pandas DataFrame, one row per point and case: the grid keys, ``case``, then the summary columns
-        (output.columns and the plotted value, else all)."""
+        """pandas DataFrame, one row per point and case: the grid keys (in SI), ``<key> (given)`` (the text of
+        each key given with units), ``case``, then the summary columns (output.columns and the plotted value,
+        else all)."""
         import pandas as pd
 
         columns = self.sweep.output.columns
         if columns is not None and self.value is not None and self.value not in columns:
             columns = columns + (self.value,)
         records = []
-        for point, point_rows in zip(self.sweep.points, self.rows):
+        given = self.sweep.given_with_units
+        si_points = self.sweep.si_points or self.sweep.points
+        for point, si_point, point_rows in zip(self.sweep.points, si_points, self.rows):
+            texts = {f"{key} (given)": str(point[key]) for key in given}
             for row in point_rows:
                 kept = {k: v for k, v in row.items() if k != "case"}
                 if columns is not None:
                     kept = {k: row[k] for k in columns}
-                records.append({**point, "case": row["case"], **kept})
+                records.append({**si_point, **texts, "case": row["case"], **kept})
         return pd.DataFrame(records)
 
     def write(self, directory: Union[str, Path]) -> List[Path]:
@@ -396,20 +441,31 @@ class SweepRun:
             from ..plots import save
 
             written.append(save(figure, directory / "sweep.png"))
+        else:
+            log.warning("%s: no sweep.png: %s", self.sweep.name, self.why_no_figure())
         if self.sweep.text is not None:
             written.append(directory / "sweep.toml")
             written[-1].write_text(self.sweep.text, encoding="utf-8")
         return written
 
+    def why_no_figure(self) -> Optional[str]:
+        """Why :meth:`figure` draws nothing (None when it draws)."""
+        x_key = next(iter(self.sweep.axes))
+        if self.value is None:
+            return f"no numeric summary column to plot (give output.value; tried {', '.join(DEFAULT_VALUES)})"
+        si_points = self.sweep.si_points or self.sweep.points
+        if not all(isinstance(p[x_key], (int, float)) and not isinstance(p[x_key], bool) for p in si_points):
+            return f"the first grid key {x_key!r} is not numeric (put a numeric key first to plot over it)"
+        return None
+
     def figure(self, frame=None):
         """``value`` against the first grid key, one line per case and combination of the other keys (at most
         :data:`MAX_LINES`); None when that key's values are not numbers."""
+        if self.why_no_figure() is not None:
+            return None
         frame = self.frame() if frame is None else frame
         keys = list(self.sweep.axes)
         x_key, value = keys[0], self.value
-        if value is None or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                    for v in self.sweep.axes[x_key]):
-            return None
         from matplotlib.figure import Figure
 
         figure = Figure(figsize=(8.0, 4.5), layout="constrained")
@@ -424,7 +480,7 @@ class SweepRun:
             ax.plot(part[x_key], part[value], marker="o", markersize=3, label=text)
         if x_key in self.sweep.log_axes:
             ax.set_xscale("log")
-        ax.set_xlabel(x_key)
+        ax.set_xlabel(f"{x_key} [{self.sweep.si_units[x_key]}]" if x_key in self.sweep.si_units else x_key)
         ax.set_ylabel(value)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
