@@ -64,7 +64,18 @@ _TORQUE_RIGS = ("TorsionalRig", "StringRig")
 
 
 def require_xarray():
-    """The xarray module, or an ImportError saying how to get it."""
+    """The xarray module, imported on first use (it is an optional dependency).
+
+    Returns
+    -------
+    module
+        ``xarray``.
+
+    Raises
+    ------
+    ImportError
+        Without xarray, saying how to get it (``pip install 'frictionsim[io]'``).
+    """
     try:
         return importlib.import_module("xarray")
     except ImportError as error:
@@ -73,8 +84,25 @@ def require_xarray():
 
 
 def netcdf_engine(engine: Optional[str] = None) -> str:
-    """The netCDF writer to use: ``engine`` when given and installed, else the first installed of ``ENGINES``'
-    netCDF-4 writers. Raises InvalidParameterError for an unknown name, ImportError naming the extra when missing."""
+    """The netCDF writer to use.
+
+    Parameters
+    ----------
+    engine : {"h5netcdf", "netcdf4", "scipy"}, optional
+        The writer wanted; default the first installed of ``ENGINES``' netCDF-4 writers.
+
+    Returns
+    -------
+    str
+        The engine's name, as xarray's ``to_netcdf(engine=...)`` takes it.
+
+    Raises
+    ------
+    InvalidParameterError (a ValueError)
+        An unknown name.
+    ImportError
+        The writer (or every netCDF-4 writer) is not installed; names the extra.
+    """
     if engine is not None:
         if engine not in ENGINES:
             raise InvalidParameterError(f"engine must be one of {', '.join(ENGINES)} (got {engine!r})", "engine")
@@ -99,7 +127,18 @@ def _installed(engine: str) -> bool:
 
 
 def parquet_engine() -> str:
-    """pandas' parquet writer that is installed (pyarrow, else fastparquet), or an ImportError naming the extra."""
+    """pandas' parquet writer that is installed.
+
+    Returns
+    -------
+    str
+        "pyarrow", else "fastparquet", as pandas' ``to_parquet(engine=...)`` takes it.
+
+    Raises
+    ------
+    ImportError
+        Neither is installed; names the extra.
+    """
     for name in PARQUET_ENGINES:
         try:
             importlib.import_module(name)
@@ -111,8 +150,21 @@ def parquet_engine() -> str:
 
 
 def state_units(name: str, rig_type: Optional[str] = None) -> Optional[str]:
-    """The SI unit of a state or output column ``name`` (None when not known); ``rig_type`` (the rig's class name)
-    tells force from torque."""
+    """The SI unit of a state or output column.
+
+    Parameters
+    ----------
+    name : str
+        A state (``disc_speed``, ``theta_3``, ...) or an output column (``friction_force``, ``t``, ...).
+    rig_type : str, optional
+        The rig's class name: it tells a force from a torque (``friction_force`` is in N m on the torsional rig
+        and a drill string).
+
+    Returns
+    -------
+    str or None
+        The unit ("rad/s", "N m", ...), or None when not known.
+    """
     torque = rig_type in _TORQUE_RIGS
     if name == "friction_force":
         return "N m" if torque else "N"
@@ -127,8 +179,22 @@ def state_units(name: str, rig_type: Optional[str] = None) -> Optional[str]:
 
 # ------------------------------------------------------------------------------------------------ attrs
 def metadata_attrs(record: Mapping[str, Any], title: str = "") -> Dict[str, Any]:
-    """netCDF global attributes of a provenance record: the whole record as JSON under ``metadata`` (netCDF
-    attributes are flat: numbers, strings), and its headline fields flat for tools that list attributes."""
+    """netCDF global attributes of a provenance record.
+
+    Parameters
+    ----------
+    record : mapping
+        A provenance record (:func:`frictionsim.provenance.collect`).
+    title : str, optional
+        The dataset's ``title`` attribute (none when empty).
+
+    Returns
+    -------
+    dict
+        The whole record as JSON under ``metadata`` (netCDF attributes are flat: numbers, strings), and its
+        headline fields flat for tools that list attributes (``source``, ``frictionsim_git_revision``,
+        ``created_utc``, ``rig``).
+    """
     from .provenance import to_json_safe
 
     record = to_json_safe(dict(record))
@@ -149,7 +215,23 @@ def metadata_attrs(record: Mapping[str, Any], title: str = "") -> Dict[str, Any]
 
 
 def metadata(dataset_or_attrs: Any) -> Dict[str, Any]:
-    """The provenance record of a Dataset written by frictionsim (or of its ``attrs``)."""
+    """The provenance record of a Dataset written by frictionsim.
+
+    Parameters
+    ----------
+    dataset_or_attrs : xarray.Dataset or mapping
+        The Dataset (e.g. from :func:`open_dataset`), or its ``attrs``.
+
+    Returns
+    -------
+    dict
+        The record, as :attr:`frictionsim.Result.metadata` had it.
+
+    Raises
+    ------
+    InvalidParameterError (a ValueError)
+        The dataset carries no frictionsim provenance.
+    """
     attrs = getattr(dataset_or_attrs, "attrs", dataset_or_attrs)
     if "metadata" not in attrs:
         raise InvalidParameterError("metadata: the dataset carries no frictionsim provenance (no 'metadata' "
@@ -159,8 +241,23 @@ def metadata(dataset_or_attrs: Any) -> Dict[str, Any]:
 
 # ------------------------------------------------------------------------------------------------ Result
 def result_dataset(result) -> Any:
-    """A :class:`frictionsim.Result` as an xarray Dataset (see the module's description); values are the Result's,
-    bit for bit."""
+    """A simulation result as a labelled xarray Dataset (see the module's description).
+
+    Parameters
+    ----------
+    result : frictionsim.Result
+        The run.
+
+    Returns
+    -------
+    xarray.Dataset
+        Its values bit for bit, with units; ``attrs``: the provenance record and the run's status.
+
+    Raises
+    ------
+    ImportError
+        Without xarray (``pip install 'frictionsim[io]'``).
+    """
     xr = require_xarray()
     record = result.metadata
     rigs = record.get("rigs") or [{}]
@@ -217,7 +314,22 @@ def _event_variables(events, dim: str, state_names, *, stop: bool) -> Dict[str, 
 
 # ------------------------------------------------------------------------------------------------ files
 def write_netcdf(dataset, path: Union[str, Path], engine: Optional[str] = None) -> Path:
-    """Write ``dataset`` to ``path`` as netCDF (``engine``: see :func:`netcdf_engine`); returns the path."""
+    """Write a Dataset as a netCDF file.
+
+    Parameters
+    ----------
+    dataset : xarray.Dataset
+        What to write (e.g. :meth:`frictionsim.Result.to_xarray`).
+    path : str or pathlib.Path
+        The file to write.
+    engine : {"h5netcdf", "netcdf4", "scipy"}, optional
+        The writer (see :func:`netcdf_engine`).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     name = netcdf_engine(engine)
     dataset.to_netcdf(path, engine=name)
@@ -225,7 +337,20 @@ def write_netcdf(dataset, path: Union[str, Path], engine: Optional[str] = None) 
 
 
 def open_dataset(path: Union[str, Path], engine: Optional[str] = None):
-    """Open a netCDF file written by frictionsim, read it into memory and close it (no file handle left open)."""
+    """Open a netCDF file written by frictionsim, read it into memory and close it (no file handle left open).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file.
+    engine : {"h5netcdf", "netcdf4", "scipy"}, optional
+        The reader; default xarray's choice.
+
+    Returns
+    -------
+    xarray.Dataset
+        Loaded in memory; :func:`metadata` gives its provenance record.
+    """
     xr = require_xarray()
     name = netcdf_engine(engine) if engine is not None else None
     with xr.open_dataset(Path(path), engine=name) as dataset:

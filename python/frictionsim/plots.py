@@ -5,7 +5,14 @@ sequence of Axes, one per panel), returns the Axes it drew on (or the Figure for
 keywords (``color=``, ``linewidth=``, ...) to the artists of its data. Without ``ax`` the figure is a plain
 :class:`matplotlib.figure.Figure`, not a pyplot figure: nothing is registered with pyplot and no backend is
 switched, so these functions work headless (CI, ``frictionsim`` on a server) and inside notebooks alike.
-:func:`save` writes a PNG of a Figure or of an Axes' figure and clears it.
+:func:`save` writes a PNG of a Figure or of an Axes' figure and leaves it as it was (``release=True`` frees the
+contents of a figure frictionsim made, for a pipeline done with it; a figure of yours is never cleared).
+
+The single-panel functions are named ``*_axes`` and return the Axes they drew on; the multi-panel ones
+``*_figure`` and return the Figure. Five single-panel functions were once named ``*_figure`` (when every function
+made its own figure); those names stay as aliases of the ``*_axes`` ones and, like them, return the Axes:
+``friction_force_figure``, ``drive_force_figure``, ``power_law_figure``, ``reduction_sweep_figure``,
+``phase_portrait_figure``.
 
 Time-series inputs are ``traces``: a :class:`frictionsim.Result`, a pandas DataFrame, or a sequence of
 ``(label, data)`` with either. A frame has the columns of :meth:`frictionsim.scenario.CaseRun.timeseries` (t [s],
@@ -25,12 +32,27 @@ import numpy as np
 
 from .errors import InvalidParameterError
 
-__all__ = ["broomstick_axes", "broomstick_figure", "disc_speed_figure", "drive_force_figure", "friction_force_figure",
-           "friction_torque_hysteresis_figure", "hysteresis_figure", "law_comparison_figure", "phase_portrait_figure",
-           "placement_axes", "power_law_figure", "reduction_sweep_figure", "save", "stick_slip_map_axes",
-           "stick_slip_map_figure", "sweep_axes", "time_series_axes", "well_path_axes", "well_path_figure"]
+__all__ = ["broomstick_axes", "broomstick_figure", "disc_speed_figure", "drive_force_axes", "drive_force_figure",
+           "friction_force_axes", "friction_force_figure", "friction_torque_hysteresis_figure", "hysteresis_figure",
+           "law_comparison_figure", "phase_portrait_axes", "phase_portrait_figure", "placement_axes",
+           "power_law_axes", "power_law_figure", "reduction_sweep_axes", "reduction_sweep_figure", "save",
+           "stick_slip_map_axes", "stick_slip_map_figure", "sweep_axes", "time_series_axes", "well_path_axes",
+           "well_path_figure"]
 
 Window = Optional[Tuple[float, float]]
+
+
+#: Marks the figures frictionsim made (the only ones :func:`save` may clear).
+_MADE_HERE = "_frictionsim_made"
+
+
+def _new_figure(width: float, height: float):
+    """A new (non-pyplot) figure, marked as frictionsim's own."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(width, height), layout="constrained")
+    setattr(figure, _MADE_HERE, True)
+    return figure
 
 
 def _axes(ax, width: float = 8.0, height: float = 4.5):
@@ -39,18 +61,14 @@ def _axes(ax, width: float = 8.0, height: float = 4.5):
         if not hasattr(ax, "plot") or not hasattr(ax, "figure"):
             raise InvalidParameterError(f"ax must be a matplotlib Axes (got {type(ax).__name__})", "ax")
         return ax
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=(width, height), layout="constrained").subplots()
+    return _new_figure(width, height).subplots()
 
 
 def _panels(ax, n: int, width: float, height: float, rows: bool = False):
     """(figure, list of n Axes): the given sequence ``ax`` (one Axes per panel), or a new figure's n panels side by
     side (``rows``: stacked, sharing t)."""
     if ax is None:
-        from matplotlib.figure import Figure
-
-        figure = Figure(figsize=(width, height), layout="constrained")
+        figure = _new_figure(width, height)
         grid = figure.subplots(n, 1, sharex=True, squeeze=False) if rows else figure.subplots(1, n, squeeze=False)
         return figure, list(np.ravel(grid))
     axes = list(np.ravel(np.asarray(ax, dtype=object)))
@@ -132,16 +150,34 @@ def _window(frame, window: Window):
     return frame[(t >= window[0]) & (t <= window[1])]
 
 
-def save(figure, path: Union[str, Path], dpi: int = 120) -> Path:
-    """Write ``figure`` (a Figure, or an Axes: its figure) as PNG to ``path`` and release its contents; returns the
-    path."""
+def save(figure, path: Union[str, Path], dpi: int = 120, *, release: bool = False) -> Path:
+    """Write a figure as PNG.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure or matplotlib.axes.Axes
+        The figure, or an Axes (its figure is written). It is left as it was: you may go on drawing on it.
+    path : str or pathlib.Path
+        The PNG file to write.
+    dpi : int, optional
+        Resolution [dots per inch].
+    release : bool, optional
+        Clear the figure after writing it, freeing its artists at once (a pipeline that writes many figures and
+        keeps none). Only a figure frictionsim made (without ``ax=``) is cleared; yours, or a pyplot figure, never.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
     path = Path(path)
     if not hasattr(figure, "savefig"):
         figure = getattr(figure, "figure", None)
         if figure is None or not hasattr(figure, "savefig"):
             raise InvalidParameterError("save: figure must be a matplotlib Figure or Axes", "figure")
     figure.savefig(path, dpi=dpi)
-    figure.clear()  # not a pyplot figure: nothing to close, this frees the artists
+    if release and getattr(figure, _MADE_HERE, False):
+        figure.clear()  # not a pyplot figure: nothing to close, this frees the artists
     return path
 
 
@@ -208,7 +244,7 @@ def time_series_axes(data, columns: Union[str, Sequence[str], None] = None, ax=N
     return ax
 
 
-def friction_force_figure(traces, *, title: str = "", window: Window = None, ax=None, **kwargs):
+def friction_force_axes(traces, *, title: str = "", window: Window = None, ax=None, **kwargs):
     """Friction force F_F [N] against time t [s], one line per trace (paper 000 Fig. 7 layout). Returns the Axes."""
     return _time_series_figure(traces, "friction_force", "friction force $F_F$ [N]",
                                "friction force vs time (cf. paper 000 Fig. 7)", title=title, window=window,
@@ -237,7 +273,7 @@ def hysteresis_figure(traces, *, title: str = "", window: Window = None, ax=None
     return figure
 
 
-def drive_force_figure(traces, *, title: str = "", window: Window = None, ax=None, **kwargs):
+def drive_force_axes(traces, *, title: str = "", window: Window = None, ax=None, **kwargs):
     """Drive force F_d = k_d (v_d t - x) [N] against time [s] (axial rigs only; paper 000 eq 7, Fig. 4-5). Returns
     the Axes."""
     return _time_series_figure(traces, "drive_force", "drive force $F_d$ [N]",
@@ -245,7 +281,7 @@ def drive_force_figure(traces, *, title: str = "", window: Window = None, ax=Non
                                ax=ax, **kwargs)
 
 
-def power_law_figure(table4, fits, printed=None, *, ax=None, **kwargs):
+def power_law_axes(table4, fits, printed=None, *, ax=None, **kwargs):
     """Paper 000 Fig. 11: mu_df against v_a/v_d on log-log axes per lubricant, with the fitted power laws.
 
     ``table4``: :func:`frictionsim.data.table4` (columns lubricant, velocity_ratio, mu_df); ``fits``: the
@@ -277,7 +313,7 @@ def power_law_figure(table4, fits, printed=None, *, ax=None, **kwargs):
     return ax
 
 
-def reduction_sweep_figure(frame, columns: Sequence[Tuple[str, str]], *, title: str = "", ax=None, **kwargs):
+def reduction_sweep_axes(frame, columns: Sequence[Tuple[str, str]], *, title: str = "", ax=None, **kwargs):
     """Friction reduction [%] against v_d/v_a [-]: one line per ``(column, label)`` of ``frame`` (fractions).
 
     Columns named ``*closed*`` are drawn as a dashed black line (closed forms), ``*table*`` as markers (data);
@@ -373,14 +409,14 @@ def friction_torque_hysteresis_figure(traces, *, title: str = "", window: Window
     return figure
 
 
-def phase_portrait_figure(traces, *, title: str = "", window: Window = None,
+def phase_portrait_axes(traces, *, title: str = "", window: Window = None,
                           equilibria: Optional[Sequence[Optional[Tuple[float, float]]]] = None,
                           natural_frequency: Optional[float] = None, ax=None, **kwargs):
     """Phase portrait of the disc (paper 001 Fig. 7b): disc speed w2 [rad/s] against the shaft twist th3 - th2
     [rad], one closed curve per trace in a limit cycle. ``equilibria``: per trace the operating point
     (mean twist, w_ref), marked x (None: no marker). Style keywords go to the curves. Returns the Axes."""
     traces = _traces(traces)
-    _require(traces, ["shaft_twist", "disc_speed"], "phase_portrait_figure")
+    _require(traces, ["shaft_twist", "disc_speed"], "phase_portrait_axes")
     ax = _axes(ax, 10.0, 5.5)
     for i, (label, frame) in enumerate(traces):
         part = _window(frame, window)
@@ -672,3 +708,13 @@ def sweep_axes(sweep_result, key: Optional[str] = None, ax=None, *, x: Optional[
     if title:
         ax.set_title(title, fontsize=10)
     return ax
+
+
+# ------------------------------------------------------------------------------------------------ former names
+# Single-panel functions once named *_figure (they made their own figure); kept, returning the Axes like the new
+# names (CHANGELOG: Changed).
+friction_force_figure = friction_force_axes
+drive_force_figure = drive_force_axes
+power_law_figure = power_law_axes
+reduction_sweep_figure = reduction_sweep_axes
+phase_portrait_figure = phase_portrait_axes

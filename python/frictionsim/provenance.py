@@ -22,9 +22,9 @@ import os
 import platform
 import subprocess
 import sys
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Dict, Iterable, Optional, Union
+from typing import Any, Dict, Optional, Union
 
 import numpy as np
 
@@ -50,11 +50,13 @@ def collect(*, command: Union[str, Iterable[str], None] = None, rigs: Any = (), 
     Parameters
     ----------
     command : str or sequence of str, optional
-        The command line that made the output (e.g. ``sys.argv``).
-    rigs : sequence of rigs, or mapping name -> rig
+        The command line that made the output (e.g. ``sys.argv``); its words may also be paths.
+    rigs : rig, sequence of rigs, or mapping name -> rig
         The rigs run (each: type, ``repr``, friction law ``repr``, parameters with units); a mapping names them
-        (e.g. by scenario case). Records already made by :func:`rig_record` are kept as they are.
+        (e.g. by scenario case); a single rig is one rig. Records already made by :func:`rig_record` are kept as
+        they are.
     solver_options : frictionsim._core.SolverOptions or mapping, optional
+        The options of the run (see :func:`solver_options_record`).
     stats : mapping, optional
         The solver's counters (``Result.stats``).
     extra : mapping, optional
@@ -66,11 +68,18 @@ def collect(*, command: Union[str, Iterable[str], None] = None, rigs: Any = (), 
         ``schema``, ``frictionsim`` (``version``, and ``git_revision`` / ``git_dirty`` only when run from a git
         source tree), ``created_utc`` (ISO 8601), ``platform`` (system, machine, python, numpy, scipy), then
         ``command``, ``rigs``, ``solver_options``, ``solver_stats``, ``extra`` where given.
+
+    Raises
+    ------
+    InvalidParameterError (a ValueError)
+        ``command`` neither a string nor a sequence of strings (or paths).
     """
     record: Dict[str, Any] = {"schema": SCHEMA, "frictionsim": dict(_package()), "created_utc": _utc_now(),
                               "platform": dict(_platform())}
     if command is not None:
-        record["command"] = command if isinstance(command, str) else [str(word) for word in command]
+        record["command"] = _command(command)
+    if _is_rig_record(rigs) or not isinstance(rigs, (Mapping, Iterable)):
+        rigs = [rigs]  # one rig (or one record of one)
     if isinstance(rigs, Mapping):
         record["rigs"] = [dict(_as_rig_record(rig), name=str(name)) for name, rig in rigs.items()]
     else:
@@ -86,11 +95,46 @@ def collect(*, command: Union[str, Iterable[str], None] = None, rigs: Any = (), 
     return record
 
 
+def _command(command: Any) -> Union[str, list]:
+    """The command line as a string or a list of strings; anything else is refused naming ``command``."""
+    if isinstance(command, str):
+        return command
+    words = list(command) if isinstance(command, Iterable) and not isinstance(command, (bytes, Mapping)) else None
+    if words is None or not all(isinstance(word, (str, os.PathLike)) for word in words):
+        from .errors import InvalidParameterError
+
+        raise InvalidParameterError(f"command must be a string or a sequence of strings, such as sys.argv (got "
+                                    f"{command!r})", "command")
+    return [os.fspath(word) for word in words]
+
+
+def _is_rig_record(value: Any) -> bool:
+    """A record made by :func:`rig_record` (a mapping with a type and a repr), not a mapping of named rigs."""
+    return isinstance(value, Mapping) and isinstance(value.get("type"), str) and isinstance(value.get("repr"), str)
+
+
 def write_metadata(directory: Union[str, Path], record: Mapping[str, Any]) -> Path:
-    """Write ``record`` as ``metadata.json`` in ``directory`` (which must exist); returns its path.
+    """Write a provenance record as ``metadata.json``.
 
     The file is strict JSON (non-finite numbers as the strings "NaN", "Infinity", "-Infinity"), indented, keys in
     the record's order.
+
+    Parameters
+    ----------
+    directory : str or pathlib.Path
+        An existing directory (the outputs' own).
+    record : mapping
+        The record (:func:`collect`).
+
+    Returns
+    -------
+    pathlib.Path
+        ``directory / "metadata.json"``.
+
+    Raises
+    ------
+    InvalidParameterError (a ValueError)
+        ``directory`` is not an existing directory.
     """
     directory = Path(directory)
     if not directory.is_dir():
@@ -105,8 +149,20 @@ def write_metadata(directory: Union[str, Path], record: Mapping[str, Any]) -> Pa
 
 # ------------------------------------------------------------------------------------------------ records
 def rig_record(rig: Any) -> Dict[str, Any]:
-    """A rig as JSON: its type, ``repr`` (which rebuilds it), its friction law's ``repr`` and the values of its
-    parameter table with their units (``{"name": {"value": ..., "unit": ...}}``; the law's under ``friction``)."""
+    """A rig as JSON.
+
+    Parameters
+    ----------
+    rig : rig
+        Any of the engine's rigs (or an object with ``parameters``, and ``friction`` for its law).
+
+    Returns
+    -------
+    dict
+        ``type``, ``repr`` (which rebuilds the rig), ``friction`` (the law's type, ``repr`` and parameters) and
+        ``parameters``: the values of its parameter table with their units, ``{"name": {"value": ..., "unit":
+        ...}}``.
+    """
     record: Dict[str, Any] = {"type": type(rig).__name__, "repr": repr(rig)}
     law = getattr(rig, "friction", None)
     if law is not None:
@@ -140,8 +196,19 @@ def _parameter_values(obj: Any) -> Dict[str, Any]:
 
 
 def solver_options_record(options: Any) -> Dict[str, Any]:
-    """The options of a run as JSON: enums by name, long arrays (an output grid) summarised, stop conditions by
-    ``repr``. ``options``: a :class:`frictionsim._core.SolverOptions` or a mapping."""
+    """The options of a run as JSON.
+
+    Parameters
+    ----------
+    options : frictionsim._core.SolverOptions or mapping
+        The run's options.
+
+    Returns
+    -------
+    dict
+        Each option worth recording: enums by name, long arrays (an output grid) summarised, stop conditions by
+        ``repr``.
+    """
     if isinstance(options, Mapping):
         return to_json_safe(dict(options))
     record: Dict[str, Any] = {}
@@ -162,9 +229,20 @@ def solver_options_record(options: Any) -> Dict[str, Any]:
 
 
 def to_json_safe(value: Any) -> Any:
-    """``value`` as plain JSON types: NumPy scalars and arrays to numbers and lists (arrays longer than 64 to a
-    summary), tuples to lists, non-finite floats to "NaN" / "Infinity" / "-Infinity", enums by name, anything
-    else by ``repr``."""
+    """A value as plain JSON types.
+
+    Parameters
+    ----------
+    value : object
+        Anything: numbers, strings, mappings, sequences, NumPy scalars and arrays, enums, paths, ...
+
+    Returns
+    -------
+    None, bool, int, float, str, list or dict
+        NumPy scalars and arrays as numbers and lists (arrays longer than 64 as a summary: count, shape, first,
+        last, min, max), tuples as lists, non-finite floats as "NaN" / "Infinity" / "-Infinity", enums by name,
+        paths as text, anything else by ``repr``.
+    """
     if value is None or isinstance(value, (bool, str)):
         return value
     if isinstance(value, np.bool_):
@@ -212,7 +290,18 @@ def _utc_now() -> str:
 
 
 def utc_time(timestamp: float) -> str:
-    """A POSIX time [s] as the record's ISO 8601 UTC text."""
+    """A POSIX time as the record's ISO 8601 UTC text.
+
+    Parameters
+    ----------
+    timestamp : float
+        Seconds since the epoch.
+
+    Returns
+    -------
+    str
+        E.g. "2026-11-24T20:48:27.000000+00:00".
+    """
     return datetime.datetime.fromtimestamp(timestamp, datetime.timezone.utc).isoformat(timespec="microseconds")
 
 
@@ -249,16 +338,31 @@ def _package() -> tuple:
 
 
 def git_revision(package_dir: Union[str, Path]):
-    """``(commit, dirty)`` of the git work tree ``package_dir`` lies in, or None when it lies in none (an installed
-    wheel) or the tree cannot be read. ``dirty`` (tracked files changed) is None where the git program is missing.
+    """The git revision of frictionsim's source tree the package lies in.
 
     A package under ``site-packages`` is installed, never "from the source tree", even when a virtual environment
-    sits inside a repository."""
+    sits inside a repository; and a package copied into some other repository (a project that vendors it, a
+    scratch directory under a home kept in git) is not that repository's: the enclosing work tree counts only when
+    its ``python/frictionsim`` is this package directory, the layout of frictionsim's own tree.
+
+    Parameters
+    ----------
+    package_dir : str or pathlib.Path
+        The directory of the ``frictionsim`` package (``python/frictionsim`` in a source tree).
+
+    Returns
+    -------
+    tuple of (str, bool or None), or None
+        ``(commit, dirty)``: HEAD's commit and whether tracked files changed (None where the git program is
+        missing); None when the package lies in no frictionsim source tree (an installed wheel) or the tree cannot
+        be read.
+    """
     package_dir = Path(package_dir)
     if any(part in ("site-packages", "dist-packages") for part in package_dir.parts):
         return None
+    package_dir = package_dir.resolve()  # the tree it lies in, whatever symbolic link it was reached by
     root = next((p for p in (package_dir, *package_dir.parents) if (p / ".git").exists()), None)
-    if root is None:
+    if root is None or not _same_directory(root / "python" / "frictionsim", package_dir):
         return None
     commit = _git(root, "rev-parse", "HEAD")
     if commit is None:
@@ -266,6 +370,13 @@ def git_revision(package_dir: Union[str, Path]):
         return None if commit is None else (commit, None)
     status = _git(root, "status", "--porcelain", "--untracked-files=no")
     return commit, (None if status is None else bool(status))
+
+
+def _same_directory(a: Path, b: Path) -> bool:
+    try:
+        return a.resolve(strict=True) == b.resolve(strict=True)
+    except OSError:  # a does not exist: not frictionsim's layout
+        return False
 
 
 def _git(root: Path, *args: str) -> Optional[str]:

@@ -171,23 +171,66 @@ class Result:
         self._metadata = dict(record)
 
     def to_xarray(self):
-        """The result as an :class:`xarray.Dataset` over ``time`` [s] with units, the event log over ``event`` and
-        the provenance in ``attrs`` (:func:`frictionsim.io.result_dataset`). Needs ``frictionsim[io]``."""
+        """The result as a labelled xarray Dataset (:func:`frictionsim.io.result_dataset`).
+
+        Returns
+        -------
+        xarray.Dataset
+            The states, friction force and mode over ``time`` [s] with their units, the event log over ``event``,
+            the stop conditions' crossings over ``stop_event``; ``attrs`` hold the provenance (:attr:`metadata`).
+
+        Raises
+        ------
+        ImportError
+            Without xarray (``pip install 'frictionsim[io]'``).
+        """
         from .io import result_dataset
 
         return result_dataset(self)
 
     def to_netcdf(self, path, *, engine: Optional[str] = None):
-        """Write :meth:`to_xarray` as netCDF-4 to ``path`` (``engine``: "h5netcdf", "netcdf4", or "scipy" for
-        netCDF-3; default the first installed netCDF-4 writer); returns the path. Needs ``frictionsim[io]``."""
+        """Write :meth:`to_xarray` as a netCDF file, its provenance in the global attributes.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The file to write.
+        engine : {"h5netcdf", "netcdf4", "scipy"}, optional
+            The writer: the netCDF-4 ones (default the first installed), or "scipy" for netCDF-3.
+
+        Returns
+        -------
+        pathlib.Path
+            ``path``; read it back with :func:`frictionsim.io.open_dataset`.
+
+        Raises
+        ------
+        ImportError
+            Without xarray or the writer (``pip install 'frictionsim[io]'``).
+        InvalidParameterError (a ValueError)
+            An unknown ``engine``.
+        """
         from .io import write_netcdf
 
         return write_netcdf(self.to_xarray(), path, engine)
 
     def plot(self, columns=None, ax=None, **kwargs):
-        """Columns against time t [s] on ``ax`` (default a new figure): ``columns`` a name or names of states,
-        "friction_force" or "mode" (default the friction force); style keywords go to matplotlib's ``plot``.
-        Returns the Axes (:func:`frictionsim.plots.time_series_axes`)."""
+        """Columns against time t [s] (:func:`frictionsim.plots.time_series_axes`).
+
+        Parameters
+        ----------
+        columns : str or sequence of str, optional
+            Names of states, "friction_force" or "mode" (default the friction force).
+        ax : matplotlib.axes.Axes, optional
+            Drawn into; default a new figure (not registered with pyplot).
+        **kwargs
+            Style keywords for matplotlib's ``plot`` (color, linewidth, ...).
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+            The Axes drawn on.
+        """
         from .plots import time_series_axes
 
         return time_series_axes(self, columns, ax=ax, **kwargs)

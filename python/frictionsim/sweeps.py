@@ -445,11 +445,28 @@ class SweepResult:
         return frame
 
     def to_xarray(self, units: Optional[Mapping[str, str]] = None):
-        """The sweep as an :class:`xarray.Dataset`: over the grid's axes (one dimension per parameter, its values
-        the coordinate) for a Cartesian grid, else over ``point`` with the parameters as coordinates. A scalar
-        value is the variable "value", a dict value one variable per key (numbers, or strings); failed points are
-        NaN (or "") with their error in the variable "error" ("" elsewhere). ``units``: name -> unit of parameters and values (``units``
-        attributes). ``attrs``: :attr:`metadata`. Needs ``frictionsim[io]``."""
+        """The sweep as a labelled xarray Dataset.
+
+        Over the grid's axes (one dimension per parameter, its values the coordinate) for a Cartesian grid, else
+        over ``point`` with the parameters as coordinates. A scalar value is the variable "value", a dict value one
+        variable per key (numbers, or strings); failed points are NaN (or "") with their error in the variable
+        "error" ("" elsewhere).
+
+        Parameters
+        ----------
+        units : mapping of str to str, optional
+            Name -> unit of parameters and values, written as their ``units`` attributes.
+
+        Returns
+        -------
+        xarray.Dataset
+            The values over the grid; ``attrs`` hold the provenance (:attr:`metadata`).
+
+        Raises
+        ------
+        ImportError
+            Without xarray (``pip install 'frictionsim[io]'``).
+        """
         from .io import metadata_attrs, require_xarray
 
         xr = require_xarray()
@@ -474,7 +491,22 @@ class SweepResult:
         return xr.Dataset(data, coords=coords, attrs=metadata_attrs(self.metadata or {}, title="frictionsim sweep"))
 
     def to_netcdf(self, path, *, units: Optional[Mapping[str, str]] = None, engine: Optional[str] = None):
-        """Write :meth:`to_xarray` as netCDF to ``path`` (see :meth:`frictionsim.Result.to_netcdf`); returns it."""
+        """Write :meth:`to_xarray` as a netCDF file, its provenance in the global attributes.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The file to write.
+        units : mapping of str to str, optional
+            Name -> unit of parameters and values (see :meth:`to_xarray`).
+        engine : {"h5netcdf", "netcdf4", "scipy"}, optional
+            The writer: the netCDF-4 ones (default the first installed), or "scipy" for netCDF-3.
+
+        Returns
+        -------
+        pathlib.Path
+            ``path``; read it back with :func:`frictionsim.io.open_dataset`.
+        """
         from .io import write_netcdf
 
         return write_netcdf(self.to_xarray(units), path, engine)

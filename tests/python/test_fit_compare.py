@@ -83,31 +83,46 @@ def test_weighted_aic_counts_the_weights_and_drops_zero_weight_samples():
 
 
 # ------------------------------------------------------------------------------------------ profile likelihood
+def closed_form_interval(v, force, level):
+    """The textbook least-squares interval of the linear model F - mu F_N = a F_N exp(-(v/v_s)^delta) + b v, built
+    here from its design matrix: beta +- t_{m-n}((1 + level)/2) sqrt(s^2 (X^T X)^-1), s^2 = RSS / (m - n)."""
+    X = np.column_stack([N * np.exp(-(v / V_S) ** DELTA), v])
+    y = force - MU * N
+    beta, *_ = np.linalg.lstsq(X, y, rcond=None)
+    m, n = X.shape
+    s2 = float(np.sum((y - X @ beta) ** 2)) / (m - n)
+    half = stats.t.ppf(0.5 + level / 2.0, m - n) * np.sqrt(np.diag(s2 * np.linalg.inv(X.T @ X)))
+    return beta, half
+
+
 @pytest.mark.parametrize("level", [0.95, 0.68])
-def test_profile_interval_equals_wald_where_the_model_is_linear(linear_fit, level):
+def test_profile_interval_equals_the_closed_form_least_squares_interval(linear_fit, level):
     """Linear in both searched parameters: D(theta) = (theta - theta*)^2 / Var exactly, so the profile ends are
-    theta* +- z SE, with the same s^2 = RSS / (m - n) as the standard errors."""
-    result, _ = linear_fit
-    z = stats.norm.ppf(0.5 + level / 2.0)
+    theta* +- t_{m-n} SE, the closed-form interval of linear least squares (Student's t with m - n = 6 degrees of
+    freedom, as s^2 is estimated: the normal quantile would give an interval 1 / 1.248 as wide at 95 %). Checked
+    against an independent solve of the design matrix."""
+    result, v = linear_fit
+    beta, half = closed_form_interval(v, result.measured, level)
     ci = result.conf_interval(level=level)
     assert list(ci.index) == ["mu_static_excess", "viscous_coefficient"]
-    for name, se in (("mu_static_excess", result.stderr["mu_static"]),
-                     ("viscous_coefficient", result.stderr["viscous_coefficient"])):
+    for k, name in enumerate(ci.index):
         row = ci.loc[name]
         assert row["closed"] and row["level"] == level
-        assert row["lower"] == pytest.approx(row["value"] - z * se, abs=1e-6 * z * se)
-        assert row["upper"] == pytest.approx(row["value"] + z * se, abs=1e-6 * z * se)
-        assert (row["wald_lower"], row["wald_upper"]) == (pytest.approx(row["value"] - z * se, rel=1e-9),
-                                                          pytest.approx(row["value"] + z * se, rel=1e-9))
+        assert row["value"] == pytest.approx(beta[k], rel=1e-6)
+        assert row["lower"] == pytest.approx(beta[k] - half[k], abs=1e-5 * half[k])
+        assert row["upper"] == pytest.approx(beta[k] + half[k], abs=1e-5 * half[k])
+        assert (row["wald_lower"], row["wald_upper"]) == (pytest.approx(beta[k] - half[k], abs=1e-5 * half[k]),
+                                                          pytest.approx(beta[k] + half[k], abs=1e-5 * half[k]))
     assert ci.loc["viscous_coefficient", "value"] == result.params["viscous_coefficient"]
 
 
 def test_profile_interval_covers_the_truth_on_a_nonlinear_fit():
     """Dahl mu and k_t from 51 samples of a slow sweep with 20 % noise (repeated records): the profile interval of
     k_t is asymmetric (the likelihood is not quadratic in k_t) and its 95 % interval covers the true k_t in at least
-    26 of 30 records (measured 29 / 30, Wald's symmetric interval too; 96 % over 100 records), upper half-width 1.12
-    times the lower on average. Its upper end is checked by an independent refit with k_t held there: the
-    likelihood-ratio statistic is chi2_1(0.95) = 3.841 (measured 3.837)."""
+    26 of 30 records (measured 30 / 30, Wald's symmetric t interval 29 / 30; over 100 records 97 % and 96 %), upper
+    half-width 1.13 times the lower on average. Its upper end is checked by an independent refit with k_t held
+    there: the statistic is the profile t squared at its bound, F_{1,49}(0.95) = t_49(0.975)^2 = 4.038 (measured
+    4.069)."""
     t = np.linspace(0.0, 1.0, 51)
     v = 0.005 * np.sin(2.0 * np.pi * t)
     clean = simulate_force(fs.Dahl(mu=0.3, tangential_stiffness=1e4, exponent=1.0), t, v)
@@ -127,7 +142,7 @@ def test_profile_interval_covers_the_truth_on_a_nonlinear_fit():
                          initial_guess=dict(mu=result.params["mu"]),
                          fixed=dict(tangential_stiffness=ci["upper"]))
     s2 = result.rss / (t.size - 2)
-    assert (held.rss - result.rss) / s2 == pytest.approx(stats.chi2.ppf(0.95, 1), abs=0.05)
+    assert (held.rss - result.rss) / s2 == pytest.approx(stats.t.ppf(0.975, t.size - 2) ** 2, abs=0.05)
 
 
 def test_conf_interval_rejects_bad_input_and_needs_the_original_result(linear_fit):
@@ -140,12 +155,30 @@ def test_conf_interval_rejects_bad_input_and_needs_the_original_result(linear_fi
         result.conf_interval(["stribeck_velocity"])  # held, not searched
     assert info.value.parameter == "names"
     assert list(result.conf_interval(["sigma_v"]).index) == ["viscous_coefficient"]  # symbols accepted
+    with pytest.raises(ValueError) as info:
+        result.conf_interval(["friction"])
+    message = str(info.value)
+    assert info.value.parameter == "names" and "'friction'" in message
+    for name in ("mu_static_excess", "viscous_coefficient"):  # the search variables, each listed once
+        assert message.count(name) == 1, message
     copy = pickle.loads(pickle.dumps(result))  # the numbers travel, the objective (a closure) does not
     assert copy.aic == result.aic and copy.params == result.params
     with pytest.raises(ValueError, match="unpickled"):
         copy.conf_interval()
     with pytest.raises(ValueError, match="unpickled"):
         copy.eval(result.t, np.ones(8), N)
+
+
+def test_conf_interval_takes_any_real_level_and_profiles_a_repeated_name_once(linear_fit):
+    result, _ = linear_fit
+    ci = result.conf_interval(["sigma_v", "viscous_coefficient", "mu_static", "sigma_v"], level=np.float32(0.9))
+    assert list(ci.index) == ["viscous_coefficient", "mu_static_excess"]  # first-given order, each once
+    assert ci["level"].tolist() == [float(np.float32(0.9))] * 2
+    reference = result.conf_interval(["viscous_coefficient", "mu_static_excess"], level=float(np.float32(0.9)))
+    assert ci.equals(reference)
+    with pytest.raises(ValueError) as info:
+        result.conf_interval(level=np.bool_(True))
+    assert info.value.parameter == "level"
 
 
 # ------------------------------------------------------------------------------------------ eval and plot
@@ -261,6 +294,22 @@ def test_callback_sees_every_generation_and_can_stop_the_global_search(dahl_reco
     assert set(seen[0].params) == {"mu", "tangential_stiffness", "exponent"}
     assert not result.success and "stopped by the callback" in result.message
     assert result.rss == pytest.approx(seen[-1].rss, rel=1e-9)  # the best point found is returned
+
+
+@pytest.mark.parametrize("answer", [np.True_, 1])
+def test_any_true_answer_of_the_callback_stops_the_search(dahl_record, answer):
+    """The rule of differential_evolution's callback, bool(answer): np.True_ (what a comparison of NumPy numbers
+    gives) stops like True; None (a callback that returns nothing) goes on, tested above."""
+    t, v, force = dahl_record
+    seen = []
+
+    def callback(progress):
+        seen.append(progress.iteration)
+        return answer if progress.iteration >= 2 else np.False_
+
+    result = identify_dahl(t, v, force, N, callback=callback)
+    assert seen == [1, 2]
+    assert not result.success and "stopped by the callback" in result.message
 
 
 def test_least_squares_callback_and_verbose_logging(dahl_record, caplog, capsys):

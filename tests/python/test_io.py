@@ -8,6 +8,7 @@ from __future__ import annotations
 import datetime
 import json
 import math
+import pathlib
 import platform
 import subprocess
 import sys
@@ -136,6 +137,42 @@ def test_git_revision_of_a_source_tree(tmp_path):
     assert provenance.git_revision(installed) is None  # an installed package is never "the source tree"
 
 
+def test_git_revision_ignores_an_unrelated_outer_repository(tmp_path):
+    """A package copied into another project's repository (vendored, or a scratch copy under a home kept in git)
+    records no revision: that repository's commit is not frictionsim's."""
+    outer = tmp_path / "outer"
+    vendored = outer / "third_party" / "frictionsim"
+    vendored.mkdir(parents=True)
+    (vendored / "module.py").write_text("x = 1\n")
+    (outer / "python" / "frictionsim").mkdir(parents=True)  # even beside a python/frictionsim of its own
+    (outer / "python" / "frictionsim" / "other.py").write_text("y = 1\n")
+    git = ["git", "-C", str(outer), "-c", "user.name=t", "-c", "user.email=t@t"]
+    try:
+        subprocess.run(git[:3] + ["init", "-q"], check=True)
+        subprocess.run(git + ["add", "."], check=True)
+        subprocess.run(git + ["commit", "-q", "-m", "one"], check=True)
+    except (OSError, subprocess.CalledProcessError):
+        pytest.skip("no git program")
+    assert provenance.git_revision(vendored) is None
+    assert provenance.git_revision(outer / "python") is None  # not the package directory either
+    assert provenance.git_revision(outer / "python" / "frictionsim") is not None  # frictionsim's layout: recorded
+    link = tmp_path / "linked"
+    link.symlink_to(outer / "python" / "frictionsim")  # the same directory by another path is the same tree
+    assert provenance.git_revision(link) == provenance.git_revision(outer / "python" / "frictionsim")
+
+
+def test_collect_takes_a_single_rig_and_refuses_a_bad_command():
+    rig = fs.AxialVibrationRig(friction=fs.Coulomb(0.41))
+    record = provenance.collect(rigs=rig, command=("frictionsim", "run", pathlib.Path("x.toml")))
+    assert [r["repr"] for r in record["rigs"]] == [repr(rig)] and record["command"] == ["frictionsim", "run", "x.toml"]
+    assert provenance.collect(rigs=provenance.rig_record(rig))["rigs"] == record["rigs"]  # one record: one rig
+    assert provenance.collect(rigs=[rig, rig])["rigs"] == record["rigs"] * 2
+    for command in (42, [1, 2], b"frictionsim run", {"argv": "x"}):
+        with pytest.raises(InvalidParameterError, match="command") as error:
+            provenance.collect(command=command)
+        assert error.value.parameter == "command"
+
+
 # ------------------------------------------------------------------------------------------------ netCDF
 @pytest.mark.parametrize("engine", io.ENGINES)
 def test_result_netcdf_round_trip_to_the_bit(run, tmp_path, engine):
@@ -221,13 +258,31 @@ def test_sweep_over_explicit_points_has_a_point_dimension():
     np.testing.assert_array_equal(dataset["frequency"].values, [10.0, 5.0])
 
 
-def test_stick_slip_map_netcdf_and_its_severity(tmp_path):
+SPEEDS, FORCES = [3.0, 12.0], [25.0, 45.0]
+
+
+@pytest.fixture(scope="module")
+def stick_slip_map():
+    return fs.torsional.stick_slip_map(SPEEDS, FORCES, t_end=8.0, transient=4.0)
+
+
+def test_stick_slip_map_severity_against_an_independent_run(stick_slip_map):
+    m, speeds, forces = stick_slip_map, SPEEDS, FORCES
+    # Where the disc sticks it is on a limit cycle, whose mean speed is w_ref: the PI motor's speed-error integral
+    # and the shaft twist are periodic, so the drive and the disc turn on average at w_ref. With trough 0 (stuck),
+    # the severity is then (max - min) / (2 w_ref) of the disc speed, taken here from a run of its own with NumPy
+    # (measured: within 0.03 % at both stick-slip points, 3 rad/s at 25 and 45 N).
+    assert m.stick_slip.sum() == 2
+    for i, j in zip(*np.nonzero(m.stick_slip)):
+        _, alone = fs.torsional.simulate_fig7(None, 8.0, reference_speed=speeds[i], normal_force=forces[j])
+        w = alone["disc_speed"][alone.t >= 4.0]
+        assert m.severity[i, j] == pytest.approx((w.max() - w.min()) / (2.0 * speeds[i]), rel=2e-3)
+        assert m.sweep.values[i * 2 + j]["mean"] == pytest.approx(speeds[i], rel=1e-3)
+
+
+def test_stick_slip_map_netcdf(stick_slip_map, tmp_path):
     pytest.importorskip("xarray")
-    m = fs.torsional.stick_slip_map([3.0, 12.0], [25.0, 45.0], t_end=8.0, transient=4.0)
-    # the severity field is (peak - trough) / (2 mean) of each point's limit cycle
-    for (i, j), value in np.ndenumerate(m.severity):
-        cycle = m.sweep.values[i * 2 + j]
-        assert value == (cycle["peak"] - cycle["trough"]) / (2 * abs(cycle["mean"]))
+    m = stick_slip_map
     back = io.open_dataset(m.to_netcdf(tmp_path / "map.nc"))
     assert back["severity"].dims == ("reference_speed", "normal_force")
     for name in ("frequency", "peak_ratio", "stick_fraction", "severity"):

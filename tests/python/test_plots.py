@@ -81,8 +81,8 @@ def test_result_plot_names_a_missing_column(torsional):
     assert error.value.parameter == "traces"
 
 
-@pytest.mark.parametrize("function, column", [(plots.friction_force_figure, "friction_force"),
-                                              (plots.drive_force_figure, "drive_force")])
+@pytest.mark.parametrize("function, column", [(plots.friction_force_axes, "friction_force"),
+                                              (plots.drive_force_axes, "drive_force")])
 def test_time_series_figures_take_an_axes_and_style(axial_run, function, column):
     frame = axial_run.timeseries()
     ax = new_axes()
@@ -93,8 +93,8 @@ def test_time_series_figures_take_an_axes_and_style(axial_run, function, column)
     assert line.get_linestyle() == ":" and line.get_linewidth() == 3.0 and line.get_label() == "coulomb"
 
 
-def test_friction_force_figure_takes_a_result(axial_run):
-    ax = plots.friction_force_figure(axial_run.result, color="k")
+def test_friction_force_axes_takes_a_result(axial_run):
+    ax = plots.friction_force_axes(axial_run.result, color="k")
     np.testing.assert_array_equal(only_line(ax).get_ydata(), axial_run.result.friction_force)
     assert only_line(ax).get_color() == "k"
 
@@ -115,7 +115,7 @@ def test_multi_panel_figures_want_one_axes_per_panel(axial_run):
         plots.hysteresis_figure(axial_run.timeseries(), ax=new_axes())
     assert error.value.parameter == "ax"
     with pytest.raises(InvalidParameterError, match="Axes"):
-        plots.friction_force_figure(axial_run.result, ax="not an axes")
+        plots.friction_force_axes(axial_run.result, ax="not an axes")
 
 
 def test_disc_speed_and_phase_portrait_take_a_result(torsional):
@@ -127,7 +127,7 @@ def test_disc_speed_and_phase_portrait_take_a_result(torsional):
     assert disc.get_color() == "tab:orange"
     np.testing.assert_array_equal(panel.lines[1].get_ydata(), torsional["drive_speed"])
     ax = new_axes()
-    assert plots.phase_portrait_figure([("stribeck", torsional)], ax=ax, linewidth=0.5) is ax
+    assert plots.phase_portrait_axes([("stribeck", torsional)], ax=ax, linewidth=0.5) is ax
     np.testing.assert_array_equal(only_line(ax).get_xdata(), torsional["shaft_twist"])
     np.testing.assert_array_equal(only_line(ax).get_ydata(), torsional["disc_speed"])
     assert only_line(ax).get_linewidth() == 0.5
@@ -149,15 +149,15 @@ def test_friction_torque_hysteresis_into_three_axes():
 def test_reduction_and_power_law_figures_take_an_axes():
     frame = pd.DataFrame({"velocity_ratio": [0.1, 0.5, 1.0], "closed": [0.9, 0.6, 0.0], "axial": [0.88, 0.61, 0.02]})
     ax = new_axes()
-    assert plots.reduction_sweep_figure(frame, [("closed", "closed form"), ("axial", "rig")], ax=ax,
-                                        linewidth=4.0) is ax
+    assert plots.reduction_sweep_axes(frame, [("closed", "closed form"), ("axial", "rig")], ax=ax,
+                                      linewidth=4.0) is ax
     np.testing.assert_array_equal(ax.lines[1].get_ydata(), 100.0 * frame["axial"])
     assert all(line.get_linewidth() == 4.0 for line in ax.lines)
     from frictionsim.data import table4, table5
 
     ax = new_axes()
     fits = table5().set_index("lubricant")[["eta_prime", "exponent"]]  # the printed laws stand in for a refit
-    assert plots.power_law_figure(table4(), fits, ax=ax, linewidth=2.0) is ax
+    assert plots.power_law_axes(table4(), fits, ax=ax, linewidth=2.0) is ax
     refits = [line for line in ax.lines if line.get_label().startswith("refit")]
     assert len(refits) == len(fits) and all(line.get_linewidth() == 2.0 for line in refits)
 
@@ -169,6 +169,32 @@ def test_well_path_and_broomstick_take_an_axes_and_style():
     assert only_line(ax).get_color() == "tab:red"
     left, right = new_axes(2)
     assert plots.well_path_figure(survey, ax=[left, right]) is left.figure and right.lines
+
+
+@pytest.mark.parametrize("name", ["friction_force", "drive_force", "power_law", "reduction_sweep", "phase_portrait"])
+def test_single_panel_functions_are_named_axes_and_keep_their_former_figure_names(name):
+    """The *_axes name is the function (its own __name__, in __all__); the *_figure name stays as an alias."""
+    function = getattr(plots, f"{name}_axes")
+    assert function.__name__ == f"{name}_axes" and getattr(plots, f"{name}_figure") is function
+    assert {f"{name}_axes", f"{name}_figure"} <= set(plots.__all__)
+
+
+def test_save_leaves_the_figure_as_it_was(torsional, tmp_path):
+    """Writing a PNG does not take the figure away: the Axes of a Result's plot, and a figure of one's own, keep
+    their axes and lines after save, and can be drawn on and saved again."""
+    ax = torsional.plot()
+    figure = ax.figure
+    plots.save(ax, tmp_path / "a.png")
+    assert figure.axes == [ax] and len(ax.lines) == 1
+    ax.set_xlim(0.0, 1.0)
+    assert plots.save(ax, tmp_path / "b.png").stat().st_size > 0
+    own = Figure()
+    own_ax = own.subplots()
+    own_ax.plot([0.0, 1.0], [1.0, 2.0])
+    plots.save(own, tmp_path / "c.png", release=True)  # release never clears a figure frictionsim did not make
+    assert own.axes == [own_ax] and len(own_ax.lines) == 1
+    plots.save(ax, tmp_path / "d.png", release=True)  # a figure frictionsim made, released by its last user
+    assert figure.axes == []
 
 
 def test_save_takes_a_figure_or_an_axes(torsional, tmp_path):

@@ -1,18 +1,21 @@
 """Profile-likelihood confidence intervals of an identification (IdentificationResult.conf_interval).
 
 For one search variable x_i held at a trial value, the others are re-optimised (least squares from the previous
-profile point) to give the profile residual sum of squares RSS_p(x_i). With Gaussian errors of variance s^2 the
-likelihood-ratio statistic is
+profile point) to give the profile residual sum of squares RSS_p(x_i). With Gaussian errors of unknown variance,
+estimated as s^2 = RSS_min / (m - n) (the same s^2 as the standard errors), the statistic is
 
-    D(x_i) = (RSS_p(x_i) - RSS_min) / s^2,     s^2 = RSS_min / (m - n)
+    D(x_i) = (RSS_p(x_i) - RSS_min) / s^2 = tau(x_i)^2,
 
-(the same s^2 as the standard errors), and the interval at ``level`` is {x_i : D(x_i) <= chi2_1(level)} (Venzon &
-Moolgavkar 1988; Bates & Watts 1988, sec 6.1). For a model linear in x_i it equals the Wald interval
-x_i +- z sqrt(Cov_ii) exactly, since then D is the quadratic (x_i - x_i*)^2 / Cov_ii; for a nonlinear one it follows
-the curved likelihood (asymmetric, and invariant under the log transform of a positive parameter).
+the square of Bates & Watts' profile t (1988, sec 6.1, eq 6.4). tau follows Student's t with m - n degrees of
+freedom (not the normal: s^2 is estimated), so the interval at ``level`` is {x_i : D(x_i) <= F_{1, m-n}(level)}
+with F_{1, m-n}(level) = t_{m-n}((1 + level) / 2)^2 (lmfit's conf_interval makes the same F test). For a model
+linear in x_i it equals the closed-form least-squares interval x_i +- t_{m-n} sqrt(Cov_ii) exactly, since then D is
+the quadratic (x_i - x_i*)^2 / Cov_ii; for a nonlinear one it follows the curved likelihood (asymmetric, and
+invariant under the log transform of a positive parameter). With m = 8 samples and n = 2 parameters the normal
+quantile would make the "95 %" interval 1 / 1.248 of this one (coverage about 90 %).
 
 Each side: steps out from the solution (first by the Wald half-width, then growing) until D passes the threshold,
-then regula falsi on sqrt(D) - sqrt(chi2_1(level)). A side that reaches its search bound first ends there (the data do
+then regula falsi on sqrt(D) - sqrt(threshold). A side that reaches its search bound first ends there (the data do
 not bound the parameter at that level within the search range); ``closed`` is then False.
 """
 
@@ -33,7 +36,7 @@ logger = logging.getLogger("frictionsim")
 
 _MAX_STEPS = 30  # outward steps per side before giving up on a finite end
 _SUBFIT_TOL = 1e-8
-_ROOT_TOL = 1e-3  # |sqrt(D) - sqrt(chi2)| at an end
+_ROOT_TOL = 1e-3  # |sqrt(D) - sqrt(threshold)| at an end
 _MAX_ROOT_STEPS = 30
 
 
@@ -166,12 +169,26 @@ def _end(statistic: Callable[[float], float], threshold: float, inner: float, in
     return float(x)
 
 
+def _dof(problem: _Problem) -> int:
+    """m - n: the residual degrees of freedom of s^2 (at least 1, as in the standard errors)."""
+    return max(problem.n_used - problem.x.size, 1)
+
+
+def _threshold(problem: _Problem, level: float) -> float:
+    """F_{1, m-n}(level) = t_{m-n}((1 + level) / 2)^2: the bound on D = tau^2 (Bates & Watts 1988, eq 6.4)."""
+    return float(stats.f.ppf(level, 1, _dof(problem)))
+
+
+def _t_quantile(problem: _Problem, level: float) -> float:
+    """t_{m-n}((1 + level) / 2): the half-width of the Wald interval in standard errors."""
+    return float(stats.t.ppf(0.5 + 0.5 * level, _dof(problem)))
+
+
 def _interval(problem: _Problem, i: int, level: float) -> Dict[str, Any]:
     """The profile-likelihood interval of search variable ``i`` at ``level``, in the reported unit."""
     var = problem.spec.variables[i]
-    m, n = problem.n_used, problem.x.size
-    s2 = problem.rss / max(m - n, 1)
-    threshold = float(stats.chi2.ppf(level, 1))
+    s2 = problem.rss / _dof(problem)
+    threshold = _threshold(problem, level)
     profile = _Profile(problem, i)
     if not (math.isfinite(s2) and s2 > 0.0):  # an exact fit: every move is infinitely unlikely
         value = var.q(float(problem.x[i]))

@@ -6,8 +6,10 @@ the duration of the call, makes them visible: the logger's level is lowered to I
 application configured no logging handler at all, a temporary one writes to stderr. The library never prints.
 
 ``callback(progress)`` is called once per differential-evolution generation and once per least-squares iteration
-(each Jacobian), with a :class:`FitProgress`; returning True stops the search at the best point found so far (as
-``scipy.optimize.differential_evolution``'s callback does), and the result's message says so.
+(each Jacobian), with a :class:`FitProgress`; a true return value (``True``, ``numpy.True_``, a non-zero number:
+anything ``bool()`` calls true) stops the search at the best point found so far, and the result's message says so;
+``None`` (a callback that returns nothing) and false values let it go on. This is the rule of
+``scipy.optimize.differential_evolution``'s callback, which tests ``bool(callback(...))``.
 """
 
 from __future__ import annotations
@@ -81,11 +83,16 @@ class _Reporter:
             values = ", ".join(f"{k}={v:.6g}" for k, v in params.items())
             logger.log(self.level, "%s %d: rss %.6g after %d simulations%s; %s", stage, iteration, rss,
                        n_evaluations, tail, values)
-        if self.callback is not None and self.callback(FitProgress(stage, iteration, float(rss), params,
-                                                                   int(n_evaluations), convergence)) is True:
+        if self.callback is not None and _wants_stop(self.callback(FitProgress(stage, iteration, float(rss), params,
+                                                                               int(n_evaluations), convergence))):
             self.stopped = True
             logger.log(self.level, "%s: stopped by the callback at iteration %d", stage, iteration)
         return self.stopped
+
+
+def _wants_stop(answer: Any) -> bool:
+    """The callback's answer as a stop request: None -> go on, else its truth value (np.True_ stops like True)."""
+    return answer is not None and bool(answer)
 
 
 @contextlib.contextmanager

@@ -6,14 +6,15 @@ the record beside the model for plotting or re-running (``eval`` on new inputs, 
 from __future__ import annotations
 
 import math
+import numbers
 import time
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .parameters import _canonical, _law_def, _LawDef, _symbol_unit
-from .profile import _interval, _Problem
+from .parameters import _law_def, _LawDef, _symbol_unit
+from .profile import _interval, _Problem, _t_quantile
 from .quality import _finite_or_failed, _fit_quality, _non_finite
 from .solver import _Fit
 from .validation import _reject
@@ -225,10 +226,9 @@ class IdentificationResult:
         -------
         matplotlib.axes.Axes
         """
-        if ax is None:
-            from matplotlib.figure import Figure
+        from ..plots import _axes
 
-            ax = Figure(figsize=(7.0, 4.0), layout="constrained").subplots()
+        ax = _axes(ax, 7.0, 4.0)
         ax.plot(self.t, self.measured, ".", ms=2.5, color="0.6", label="measured")
         kwargs.setdefault("label", f"{self.law_name} fit (R$^2$ = {self.r_squared:.4f})")
         ax.plot(self.t, self.model, **kwargs)
@@ -243,17 +243,19 @@ class IdentificationResult:
         """Profile-likelihood confidence intervals (see :mod:`frictionsim.fit.profile`).
 
         Each named parameter is held along a path while the others are re-fitted; the interval is where the
-        likelihood-ratio statistic (RSS_p - RSS) / s^2, s^2 = RSS / (m - n), stays below the chi-square quantile
-        chi2_1(level). It equals the Wald interval value +- z stderr for a parameter the model is linear in, and
-        follows the likelihood's curvature otherwise.
+        statistic (RSS_p - RSS) / s^2, s^2 = RSS / (m - n), stays below F_{1, m-n}(level) = t_{m-n}((1 + level) /
+        2)^2 (the square of Bates & Watts' profile t, 1988, sec 6.1: Student's t, as s^2 is estimated from the m
+        samples). It equals the closed-form least-squares interval value +- t_{m-n} stderr for a parameter the model
+        is linear in, and follows the likelihood's curvature otherwise.
 
         Parameters
         ----------
-        names : sequence of str, optional
+        names : str or sequence of str, optional
             Search variables to profile (default all): the law's keywords or their symbols; mu_static is searched,
-            and so profiled, as ``mu_static_excess`` = mu_static - mu; ``initial_force`` when fitted.
+            and so profiled, as ``mu_static_excess`` = mu_static - mu; ``initial_force`` when fitted. A name given
+            twice (or as keyword and symbol) is profiled once, in the order first given.
         level : float
-            Confidence level in (0, 1).
+            Confidence level in (0, 1) (any real number type, e.g. ``numpy.float32``).
 
         Returns
         -------
@@ -261,7 +263,7 @@ class IdentificationResult:
             Indexed by parameter: ``value``, ``lower``, ``upper`` (physical units), ``level``, ``closed`` (False
             when a side reached the search bound before the threshold: the data do not bound the parameter there
             at this level, and that end is the bound), ``runs`` (profile points fitted), and for comparison the
-            Wald interval ``wald_lower``, ``wald_upper`` = value -+ z stderr (z = Phi^-1((1 + level) / 2), the
+            Wald interval ``wald_lower``, ``wald_upper`` = value -+ t stderr (t = t_{m-n}((1 + level) / 2), the
             standard error of the search variable mapped to the parameter by the chain rule; +-inf where the data
             do not determine it).
 
@@ -272,8 +274,9 @@ class IdentificationResult:
         """
         import pandas as pd
 
-        if isinstance(level, bool) or not (isinstance(level, (int, float)) and 0.0 < level < 1.0):
+        if isinstance(level, (bool, np.bool_)) or not (isinstance(level, numbers.Real) and 0.0 < level < 1.0):
             _reject(f"level must be a number in (0, 1) (got {level!r})", "level")
+        level = float(level)
         problem = self._problem
         if problem is None:
             _reject("conf_interval needs the fit's objective, which a copied or unpickled IdentificationResult does "
@@ -287,28 +290,43 @@ class IdentificationResult:
             lawdef = _law_def(self.law_name)
             chosen = []
             for key in names:
-                name = key if key in searched else _canonical(lawdef, str(key), "names", tuple(searched))
-                if name in lawdef.excess:
-                    name = lawdef.excess[name][0]
-                if name not in searched:
-                    _reject(f"names: {key!r} was not fitted (the search variables are {', '.join(searched)})",
-                            "names")
-                chosen.append(name)
-        from scipy import stats
-
-        z = float(stats.norm.ppf(0.5 + 0.5 * float(level)))
+                name = self._search_variable(lawdef, key, searched)
+                if name not in chosen:
+                    chosen.append(name)
+        t = _t_quantile(problem, level)
         rows = []
         for name in chosen:
             i = searched.index(name)
             var = problem.spec.variables[i]
             x_i = float(problem.x[i])
             row = dict(parameter=name, value=var.q(x_i))
-            row.update(_interval(problem, i, float(level)))
+            row.update(_interval(problem, i, level))
             se = float(problem.x_stderr[i]) * var.dq_dx(x_i)  # dq/dx: q for a log variable, its scale if linear
-            row.update(level=float(level), wald_lower=row["value"] - z * se, wald_upper=row["value"] + z * se)
+            row.update(level=level, wald_lower=row["value"] - t * se, wald_upper=row["value"] + t * se)
             rows.append(row)
         return pd.DataFrame(rows, columns=["parameter", "value", "lower", "upper", "level", "closed", "runs",
                                            "wald_lower", "wald_upper"]).set_index("parameter")
+
+    @staticmethod
+    def _search_variable(lawdef: _LawDef, key: Any, searched: Sequence[str]) -> str:
+        """The search variable ``key`` (a keyword, symbol or search-variable name) stands for, or a rejection that
+        lists the search variables once."""
+        if isinstance(key, str):
+            if key in searched:
+                return key
+            for p in lawdef.params:
+                if key == p.name or key in p.aliases:
+                    key = p.name
+                    break
+            else:
+                for r in lawdef.cls.parameters:
+                    if r.name in lawdef.excess and key in (r.name, r.field, r.symbol):
+                        key = r.name
+            name = lawdef.excess[key][0] if key in lawdef.excess else key
+            if name in searched:
+                return name
+        _reject(f"names: {key!r} is not a search variable of this fit (the search variables are "
+                f"{', '.join(searched)})", "names")
 
     @property
     def residuals(self) -> np.ndarray:
