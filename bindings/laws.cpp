@@ -18,8 +18,12 @@ std::string format_double(double v) {
     // The shortest text that reads back to the same double: a repr rebuilds its object bit for bit (12 digits
     // turned a rig made from "55 rpm" into another rig, 7532 steps instead of 7535).
     if (v == 0.0 && std::signbit(v)) return "-0.0";  // "-0" would read back as the integer 0
-    char text[32];
-    const std::to_chars_result end = std::to_chars(text, text + sizeof text, v);
+    // Python's repr layout: positional from 1e-4 to 1e16, else scientific; the shortest digits either way
+    const double size = std::abs(v);
+    const bool positional = v == 0.0 || (size >= 1e-4 && size < 1e16);
+    char text[400];
+    const std::to_chars_result end = std::to_chars(
+        text, text + sizeof text, v, positional ? std::chars_format::fixed : std::chars_format::scientific);
     return std::string(text, end.ptr);
 }
 

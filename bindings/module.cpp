@@ -11,7 +11,10 @@ void require_constructed(py::handle self) {
     // only pybind11 instances have a holder to check (a law argument may be anything)
     if (!PyObject_IsInstance(self.ptr(), py::detail::get_internals().instance_base)) return;
     auto* inst = reinterpret_cast<py::detail::instance*>(self.ptr());
-    if (!inst->get_value_and_holder().holder_constructed()) {
+    // A value of its own (a holder) or a reference into another object's value (an element of a list attribute,
+    // returned by reference): either has a value pointer; only __new__ without __init__ leaves it null.
+    const auto v_h = inst->get_value_and_holder();
+    if (!v_h.holder_constructed() && v_h.value_ptr() == nullptr) {
         const std::string type = py::str(py::type::of(self).attr("__name__"));
         throw py::type_error(type + " object was never constructed (made by " + type +
                              ".__new__ or an incomplete pickle): build it with " + type + "(...)");

@@ -106,6 +106,13 @@ void register_results(py::module_& m) {
                                                            std::string(py::str(py::float_(c.level))) +
                                                            ", direction=" + std::to_string(c.direction);
             return "StopCondition(" + kind + ", terminal=" + (c.terminal ? "True" : "False") + ")";
+        })
+        .def("__reduce__", [](py::handle self) {
+            const auto& c = self.cast<const StopCondition&>();
+            return reduce_by_construction(self, py::tuple(),
+                                          py::dict(py::arg("state") = c.state, py::arg("level") = c.level,
+                                                   py::arg("direction") = c.direction, py::arg("mode") = c.mode,
+                                                   py::arg("terminal") = c.terminal, py::arg("name") = c.name));
         });
 
     py::class_<SolverOptions>(m, "SolverOptions", "Options of simulate(); validated when the run starts.")

@@ -1,6 +1,7 @@
 // Torque and drag along a well for Python (issue 14, items 1 and 2): fs.Survey (drillstring/survey.hpp: minimum
-// curvature, its trajectory as NumPy arrays), fs.SoftString (drillstring/soft_string.hpp: Johancsik soft-string
-// torque and drag on a DrillString of fs.PipeSection) and fs.TorqueDragResult (per node and per element arrays).
+// curvature, its trajectory as NumPy arrays), fs.SoftString (drillstring/soft_string.hpp: soft-string torque and
+// drag on a DrillString of fs.PipeSection, Johancsik's step or Aadnoy's curvature form by `method`) and
+// fs.TorqueDragResult (per node and per element arrays).
 // The operating conditions of SoftString.run are SoftStringParams' table: keywords, SoftString.parameters and the
 // error names come from it. Axial vibration tools (issue 14, items 3-4): fs.HydraulicOscillator (its table) and
 // SoftString.oscillators / sliding_weight_on_bit (drillstring/oscillator_drag.hpp: zone of influence, hook load and
@@ -285,12 +286,27 @@ struct BoundSoftString {
     Survey survey;
     DrillString string;
     SoftString model;
-    OscillatorDrag tools;  // the same string with axial vibration tools
+    OscillatorDrag tools;  // the same string and method with axial vibration tools
 
-    BoundSoftString(Survey s, DrillString d, std::size_t elements)
-        : survey(std::move(s)), string(std::move(d)), model(survey, string, elements),
-          tools(survey, string, elements) {}
+    BoundSoftString(Survey s, DrillString d, std::size_t elements, TorqueDragMethod method)
+        : survey(std::move(s)), string(std::move(d)), model(survey, string, elements, method),
+          tools(survey, string, elements, method) {}
 };
+
+constexpr TorqueDragMethod methods[] = {TorqueDragMethod::johancsik, TorqueDragMethod::aadnoy};
+
+TorqueDragMethod method_from(py::handle value) {
+    std::string names;
+    for (TorqueDragMethod m : methods)
+        names += std::string(names.empty() ? "" : ", ") + "'" + torque_drag_method_name(m) + "'";
+    if (!py::isinstance<py::str>(value))
+        throw py::type_error("SoftString: method must be a str, one of " + names + " (got " + type_name(value) + ")");
+    const std::string name = value.cast<std::string>();
+    for (TorqueDragMethod m : methods)
+        if (name == torque_drag_method_name(m)) return m;
+    throw InvalidParameter("method", "SoftString: method must be one of " + names + " (got " +
+                                         std::string(py::repr(value)) + ")");
+}
 
 std::size_t elements_from(py::handle value) {
     if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__index__"))
@@ -321,9 +337,10 @@ void def_oscillator_response(Cls& cls) {
 }
 
 const char* const soft_string_doc = R"doc(
-Soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380) of a DrillString hung from measured
-depth 0 along a Survey (which must reach the string's length), cut into `elements` elements of equal length: node 0
-at the surface, node N at the bit, element e between nodes e and e + 1. From the bit up, per element:
+Soft-string torque and drag of a DrillString hung from measured depth 0 along a Survey (which must reach the
+string's length), cut into `elements` elements of equal length: node 0 at the surface, node N at the bit, element e
+between nodes e and e + 1. method='johancsik' (the default; Johancsik, Friesen & Dawson 1984, SPE 11380), from the
+bit up, per element:
 
     F_n = sqrt(F^2 (beta^2 - dI^2) + (F dI + W sin I_avg)^2)        side force (dI = I_top - I_bottom)
     F_top = F + W dTVD/dL +/- mu_axial F_n,   M_top = M + mu_circ F_n r
@@ -333,6 +350,12 @@ friction factor split between axial and circumferential sliding by the sliding-v
 against rotary speed: paper 000's friction vector). run(operation, **conditions) gives a TorqueDragResult; the
 conditions are the keywords of SoftString.parameters (mud density, cased and open-hole friction factors, casing shoe,
 hole sizes, speeds, weight and torque on bit), SI units. Operations: SoftString.operations.
+
+method='aadnoy' (Aadnoy & Andersen 2001; Aadnoy, Fazaelizadeh & Hareland 2010, JCPT 49(10)) integrates each element
+in closed form instead: exact on straight elements, builds and drops with weight (the contact moving to the low side
+included) and weightless 3D doglegs (the capstan exp(mu theta)) at any element length; second order in the element
+length where the weight has a share across a 3D dogleg's plane (Johancsik's step is first order). The oscillators and
+sliding_weight_on_bit estimates run with the same method.
 )doc";
 
 }  // namespace
@@ -542,7 +565,8 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
     for (std::size_t i = 0; i < std::size(operations); ++i) names[i] = operation_name(operations[i]);
     cls.attr("operations") = names;
     options.disable_function_signatures();
-    cls.def(py::init([](py::handle s, py::handle d, py::handle elements) {
+    cls.attr("methods") = py::make_tuple(torque_drag_method_name(methods[0]), torque_drag_method_name(methods[1]));
+    cls.def(py::init([](py::handle s, py::handle d, py::handle elements, py::handle method) {
                 for (const auto& [value, name, ok] : {std::tuple{s, "survey", py::isinstance<Survey>(s)},
                                                       std::tuple{d, "string", py::isinstance<DrillString>(d)}}) {
                     require_constructed(value);
@@ -551,11 +575,13 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                                              (std::string(name) == "survey" ? "Survey" : "DrillString") + " (got " +
                                              type_name(value) + ")");
                 }
-                return BoundSoftString(s.cast<Survey>(), d.cast<DrillString>(), elements_from(elements));
+                const TorqueDragMethod m = method_from(method);
+                return BoundSoftString(s.cast<Survey>(), d.cast<DrillString>(), elements_from(elements), m);
             }),
-            "__init__(self, survey: Survey, string: DrillString, elements: int) -> None\n\nThe string hung from "
-            "measured depth 0 along the survey, in `elements` elements of equal length.\n",
-            py::arg("survey"), py::arg("string"), py::arg("elements"));
+            "__init__(self, survey: Survey, string: DrillString, elements: int, method: str = 'johancsik') -> None"
+            "\n\nThe string hung from measured depth 0 along the survey, in `elements` elements of equal length; "
+            "method: 'johancsik' (explicit step per element) or 'aadnoy' (closed form per element).\n",
+            py::arg("survey"), py::arg("string"), py::arg("elements"), py::arg("method") = "johancsik");
     std::string run_signature = "run(self, operation: str, *";
     const SoftStringParams defaults{};
     for (const Field<SoftStringParams>& f : condition_fields)
@@ -612,6 +638,9 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
         .def_property_readonly("string", [](const BoundSoftString& s) { return s.string; },
                                "The DrillString (a copy).")
         .def_property_readonly("elements", [](const BoundSoftString& s) { return s.model.elements(); }, "N.")
+        .def_property_readonly("method",
+                               [](const BoundSoftString& s) { return torque_drag_method_name(s.model.method()); },
+                               "How each element is integrated: 'johancsik' or 'aadnoy'.")
         .def_property_readonly("element_length", [](const BoundSoftString& s) { return s.model.element_length(); },
                                "Length of each element [m].")
         .def_property_readonly("node_depths", [](const BoundSoftString& s) { return to_array(s.model.node_depths()); },
@@ -636,13 +665,17 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
              "first): each element's side force under the mean of its end tensions, half to each of its nodes.",
              py::arg("tension"), py::arg("mud_density"))
         .def("__repr__", [](const BoundSoftString& s) {
+            const std::string method = s.model.method() == TorqueDragMethod::johancsik
+                                           ? ""
+                                           : std::string(", method='") + torque_drag_method_name(s.model.method()) + "'";
             return "SoftString(" + survey_repr(s.survey) + ", " + std::string(py::repr(py::cast(s.string))) +
-                   ", elements=" + std::to_string(s.model.elements()) + ")";
+                   ", elements=" + std::to_string(s.model.elements()) + method + ")";
         })
         .def("__reduce__", [](py::handle self) {
             const auto& s = self.cast<const BoundSoftString&>();
             return reduce_by_construction(self, py::make_tuple(py::cast(s.survey), py::cast(s.string),
-                                                               s.model.elements()));
+                                                               s.model.elements(),
+                                                               torque_drag_method_name(s.model.method())));
         });
 }
 

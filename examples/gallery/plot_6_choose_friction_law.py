@@ -11,7 +11,7 @@ Stribeck curve (no pre-sliding at all)?
 them by the Akaike information criterion, AIC = 2k - 2 ln L (Burnham & Anderson 2002), with delta-AIC and
 Akaike weights. Here the record comes from a Dahl contact with paper 000's Fig. 10 stiffness, so we know the
 answer; the example shows how the statistics reach it, and what the profile-likelihood intervals of
-:meth:`~frictionsim.fit.IdentificationResult.conf_interval` say that the Wald intervals value +- z stderr do not.
+:meth:`~frictionsim.fit.IdentificationResult.conf_interval` say that the Wald intervals value +- t stderr do not.
 """
 
 import matplotlib.pyplot as plt
@@ -115,7 +115,7 @@ units = {"mu_static_excess": "mu_s - mu [-]", "bristle_damping": "sigma_1 [N s/m
          "viscous_damping": "sigma_2 [N s/m]"}
 fig, axes = plt.subplots(1, 3, figsize=(12, 3.2), layout="constrained")
 for ax, (name, row) in zip(axes, lugre_ci.iterrows()):
-    ax.plot([row["wald_lower"], row["wald_upper"]], [1, 1], "s-", color="C1", lw=3, label="Wald: value +- z stderr")
+    ax.plot([row["wald_lower"], row["wald_upper"]], [1, 1], "s-", color="C1", lw=3, label="Wald: value +- t stderr")
     ax.plot([row["lower"], row["upper"]], [0, 0], "o-", color="C0", lw=3, label="profile likelihood")
     ax.plot(row["value"], 0.5, "kx", ms=9, label="estimate")
     ax.axvline(0.0, color="C3", ls=":", label="truth (Dahl) and the bound")

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'OscillatorDragResult', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -766,6 +766,8 @@ class StopCondition:
         """
         state: a state's name, whose crossing of `level` counts (direction -1 falling, +1 rising, 0 both); or mode: a switch into a mode of this name counts (e.g. 'stick'). terminal: the first crossing ends the run.
         """
+    def __reduce__(self) -> tuple:
+        ...
     def __repr__(self) -> typing.Any:
         ...
     @property
@@ -1400,7 +1402,7 @@ class StringRig:
         beta [s], non-negative and finite: Structural damping: each element's damping is beta times its stiffness (modal ratio beta w / 2).
     top_drive_inertia : float = 500
         J_td [kg m^2], positive and finite: Top-drive inertia at the quill (PI-controlled drive).
-    surface_speed : float = 6.28318530718
+    surface_speed : float = 6.283185307179586
         w_set [rad/s], finite: Set speed of the PI drive, or the prescribed surface speed.
     proportional_gain : float = 5000
         k_p [N m s/rad], non-negative and finite: PI proportional gain.
@@ -1432,7 +1434,7 @@ class StringRig:
         m_end [kg], non-negative and finite: Mass of a rigid BHA added to the bit node.
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.28318530718, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
+    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.283185307179586, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
         """
         The string, the wall law, then the rig's set-up and parameters by keyword (see the class docstring).
         """
@@ -2220,6 +2222,83 @@ class TorqueDragResult:
         """
         Torque at each node [N m].
         """
+class OscillatorResponse:
+    """
+    One tool's periodic steady-state response from the dynamic axial string model (drillstring/oscillator_response.hpp):
+    the event-driven StringRig in the well, the hook at the operation's speed, the bit holding the weight on bit (a
+    free end), Coulomb walls with the soft string's side forces. Per node of the dynamic model (N + 1, node 0 at the
+    surface): measured_depth [m], first_harmonic [m/s] and phase [rad] of the axial speed at the tool's frequency
+    (v ~ V + first_harmonic sin(omega t + phase)), reversed (share of the cycle sliding against the operation),
+    friction_factor (the wall's cycle-mean friction over mu N, from each node's mean balance) and amplitude [m/s]
+    (what the friction sees: the first harmonic, at most the amplitude of the sinusoid with that mean friction).
+    """
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def amplitude(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per node, the amplitude the friction sees [m/s].
+        """
+    @property
+    def events(self) -> int:
+        """
+        Stick-slip switches of the whole run.
+        """
+    @property
+    def excitation_node(self) -> int:
+        """
+        The node the tool's force acts on.
+        """
+    @property
+    def first_harmonic(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per node, the first harmonic of the axial speed at the tool's frequency [m/s].
+        """
+    @property
+    def friction_factor(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per node, the wall's cycle-mean friction over mu N (1 where no contact).
+        """
+    @property
+    def measured_depth(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Measured depth of each node of the dynamic model [m].
+        """
+    @property
+    def measured_time(self) -> float:
+        """
+        The whole cycles measured [s].
+        """
+    @property
+    def phase(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per node, its phase [rad] (v ~ V + a sin(omega t + phase)).
+        """
+    @property
+    def reach(self) -> float:
+        """
+        The travelling-wave estimate's reach from the tool [m] (the default transient's length).
+        """
+    @property
+    def reversed(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        Per node, the share of the cycle sliding against the operation's motion.
+        """
+    @property
+    def settled(self) -> bool:
+        """
+        False when max_time ran out before two windows agreed.
+        """
+    @property
+    def steps(self) -> int:
+        """
+        Integrator steps of the whole run.
+        """
+    @property
+    def transient(self) -> float:
+        """
+        Time run before the measured window [s].
+        """
 class HydraulicOscillator:
     """
     An axial vibration tool (hydraulic oscillator, agitator) in the string: its force amplitude and frequency at a measured depth (drillstring/axial_wave.hpp).
@@ -2293,6 +2372,16 @@ class OscillatorDragResult:
         Per element, 1 - the factor of the friction against the operation's motion.
         """
     @property
+    def responses(self) -> list[OscillatorResponse]:
+        """
+        vibration='dynamic': each active tool's OscillatorResponse (copies), else empty.
+        """
+    @property
+    def source(self) -> str:
+        """
+        Where the vibration came from: 'wave' or 'dynamic'.
+        """
+    @property
     def surface_torque_change(self) -> float:
         """
         [N m]
@@ -2305,7 +2394,7 @@ class OscillatorDragResult:
     @property
     def vibration_amplitude(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        Per element, the tools' axial velocity amplitude [m/s].
+        Per element, the tools' axial velocity amplitude [m/s] (vibration='dynamic': the amplitude the friction sees; the first harmonics are in responses).
         """
     @property
     def zone_bottom(self) -> float:
@@ -2324,9 +2413,10 @@ class OscillatorDragResult:
         """
 class SoftString:
     """
-    Soft-string torque and drag (Johancsik, Friesen & Dawson 1984, SPE 11380) of a DrillString hung from measured
-    depth 0 along a Survey (which must reach the string's length), cut into `elements` elements of equal length: node 0
-    at the surface, node N at the bit, element e between nodes e and e + 1. From the bit up, per element:
+    Soft-string torque and drag of a DrillString hung from measured depth 0 along a Survey (which must reach the
+    string's length), cut into `elements` elements of equal length: node 0 at the surface, node N at the bit, element e
+    between nodes e and e + 1. method='johancsik' (the default; Johancsik, Friesen & Dawson 1984, SPE 11380), from the
+    bit up, per element:
     
         F_n = sqrt(F^2 (beta^2 - dI^2) + (F dI + W sin I_avg)^2)        side force (dI = I_top - I_bottom)
         F_top = F + W dTVD/dL +/- mu_axial F_n,   M_top = M + mu_circ F_n r
@@ -2337,10 +2427,16 @@ class SoftString:
     conditions are the keywords of SoftString.parameters (mud density, cased and open-hole friction factors, casing shoe,
     hole sizes, speeds, weight and torque on bit), SI units. Operations: SoftString.operations.
     
+    method='aadnoy' (Aadnoy & Andersen 2001; Aadnoy, Fazaelizadeh & Hareland 2010, JCPT 49(10)) integrates each element
+    in closed form instead: exact on straight elements, builds and drops with weight (the contact moving to the low side
+    included) and weightless 3D doglegs (the capstan exp(mu theta)) at any element length; second order in the element
+    length where the weight has a share across a 3D dogleg's plane (Johancsik's step is first order). The oscillators and
+    sliding_weight_on_bit estimates run with the same method.
+    
     Conditions
     ----------
     mud_density : float = 1200
-        rho_m [kg/m^3], non-negative and finite: Mud density (inside and out).
+        rho_m [kg/m^3], in [0, 10000] (drilling fluids are 800-2600 kg/m^3; steel is 7850): Mud density (inside and out).
     cased_hole_friction : float = 0.25
         mu_c [-], non-negative and finite: Friction factor inside the casing.
     open_hole_friction : float = 0.3
@@ -2353,20 +2449,21 @@ class SoftString:
         D_h [m], positive and finite: Open-hole diameter (buckling clearance below the shoe).
     trip_speed : float = 0.3
         v_trip [m/s], positive and finite: Axial speed of trips and reaming.
-    rate_of_penetration : float = 0.00833333333333
+    rate_of_penetration : float = 0.008333333333333333
         ROP [m/s], non-negative and finite: Axial speed while drilling.
-    rotary_speed : float = 12.5663706144
+    rotary_speed : float = 12.566370614359172
         omega [rad/s], positive and finite: Rotary speed of the rotating operations.
     weight_on_bit : float = 0
         WOB [N], non-negative and finite: Weight on bit while drilling.
     bit_torque : float = 0
         TOB [N m], non-negative and finite: Torque on bit, rotary drilling.
     """
+    methods: typing.ClassVar[tuple] = ('johancsik', 'aadnoy')
     operations: typing.ClassVar[tuple] = ('trip_in', 'trip_out', 'reaming', 'backreaming', 'rotating_off_bottom', 'sliding_drilling', 'rotary_drilling')
     parameters: typing.ClassVar[tuple]
-    def __init__(self, survey: Survey, string: DrillString, elements: int) -> None:
+    def __init__(self, survey: Survey, string: DrillString, elements: int, method: str = 'johancsik') -> None:
         """
-        The string hung from measured depth 0 along the survey, in `elements` elements of equal length.
+        The string hung from measured depth 0 along the survey, in `elements` elements of equal length; method: 'johancsik' (explicit step per element) or 'aadnoy' (closed form per element).
         """
     def __reduce__(self) -> tuple:
         ...
@@ -2380,19 +2477,23 @@ class SoftString:
         """
         The wall contact force at each node [N] for an effective tension per node (N + 1 values, surface first): each element's side force under the mean of its end tensions, half to each of its nodes.
         """
+    def oscillator_response(self, operation: str, tool: HydraulicOscillator, **keywords) -> OscillatorResponse:
+        """
+        One tool's periodic steady-state response from the dynamic axial string model under the operation (no rotation). Keywords: the conditions of SoftString.parameters and the dynamic run's settings: vibration ('wave': the travelling-wave estimate, microseconds; 'dynamic': the axial string model run to a periodic steady state, seconds, operations without rotation only) and the dynamic run's settings: transient (s, None: 4 l / c then windows until settled), cycles (8), elements_per_wavelength (16), damping_time (0 s), rtol (1e-6), stick_speed (1e-4 m/s), steady_tolerance (0.02), max_time (30 s).
+        """
     def oscillators(self, operation: str, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) -> OscillatorDragResult:
         """
         One operation with and without axial vibration tools: each tool's wave attenuated by the wall friction it produces, the friction reduced element by element, coupled with the side forces until it settles.
-        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).
+        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law), lubricant (Table 5's row: dry, water, wbm, obm, sbm), vibration ('wave': the travelling-wave estimate, microseconds; 'dynamic': the axial string model run to a periodic steady state, seconds, operations without rotation only) and the dynamic run's settings: transient (s, None: 4 l / c then windows until settled), cycles (8), elements_per_wavelength (16), damping_time (0 s), rtol (1e-6), stick_speed (1e-4 m/s), steady_tolerance (0.02), max_time (30 s).
         """
-    def run(self, operation: str, *, mud_density: float = 1200, cased_hole_friction: float = 0.25, open_hole_friction: float = 0.3, casing_shoe_depth: float = 0, casing_inner_diameter: float = 0.2205, hole_diameter: float = 0.2159, trip_speed: float = 0.3, rate_of_penetration: float = 0.00833333333333, rotary_speed: float = 12.5663706144, weight_on_bit: float = 0, bit_torque: float = 0) -> TorqueDragResult:
+    def run(self, operation: str, *, mud_density: float = 1200, cased_hole_friction: float = 0.25, open_hole_friction: float = 0.3, casing_shoe_depth: float = 0, casing_inner_diameter: float = 0.2205, hole_diameter: float = 0.2159, trip_speed: float = 0.3, rate_of_penetration: float = 0.008333333333333333, rotary_speed: float = 12.566370614359172, weight_on_bit: float = 0, bit_torque: float = 0) -> TorqueDragResult:
         """
         Torque and drag of one operation (one of SoftString.operations) under the conditions given by keyword (the others keep their defaults; see SoftString.parameters).
         """
     def sliding_weight_on_bit(self, hook_load: float, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) -> float:
         """
         The weight on bit [N] transferred while sliding at the hook load [N] with the tools (an empty list: without): the placement objective.
-        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law) and lubricant (Table 5's row: dry, water, wbm, obm, sbm).
+        Keywords: the conditions of SoftString.parameters, and bit_reflection (R in [-1, 1]: +1 a free bit), zone_threshold (0.05), coupling_tolerance (1e-9), model ('friction_vector': the friction vector's cycle mean, or 'table5': paper 000's power law), lubricant (Table 5's row: dry, water, wbm, obm, sbm), vibration ('wave': the travelling-wave estimate, microseconds; 'dynamic': the axial string model run to a periodic steady state, seconds, operations without rotation only) and the dynamic run's settings: transient (s, None: 4 l / c then windows until settled), cycles (8), elements_per_wavelength (16), damping_time (0 s), rtol (1e-6), stick_speed (1e-4 m/s), steady_tolerance (0.02), max_time (30 s).
         """
     @property
     def element_length(self) -> float:
@@ -2403,6 +2504,11 @@ class SoftString:
     def elements(self) -> int:
         """
         N.
+        """
+    @property
+    def method(self) -> str:
+        """
+        How each element is integrated: 'johancsik' or 'aadnoy'.
         """
     @property
     def node_depths(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -2473,4 +2579,6 @@ def whole_cycle_window(t_first: typing.SupportsFloat | typing.SupportsIndex, t_l
     (t_a, t_b, cycles): whole cycles of `period` [s] after `transient` [s]; cycles <= 0 takes all that fit.
     """
 FRICTION_LAWS: tuple = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip)
+HAS_SUNDIALS: bool = True
 RIGS: tuple = (AxialVibrationRig, KinematicRig, TorsionalRig, StringRig)
+__version__: str = '0.1.0'

@@ -233,25 +233,27 @@ def _with_length(section: PipeSection, length: float) -> PipeSection:
 
 
 def soft_string(survey: Survey, string: DrillString, *, elements: Optional[int] = None,
-                element_length: float = ELEMENT_LENGTH) -> SoftString:
+                element_length: float = ELEMENT_LENGTH, method: str = "johancsik") -> SoftString:
     """The soft-string model of ``string`` hung along ``survey``: ``elements`` elements, or as many as make them
-    at most ``element_length`` [m] long."""
+    at most ``element_length`` [m] long; ``method`` "johancsik" (the step method) or "aadnoy" (the curvature
+    form, exact on builds, drops and side bends)."""
     if elements is None:
         if not (math.isfinite(element_length) and element_length > 0.0):
             raise InvalidParameterError(f"element_length must be positive and finite (got {element_length!r})",
                                         "element_length")
         elements = max(1, math.ceil(string.length / element_length - 1e-9))
-    return SoftString(survey, string, elements)
+    return SoftString(survey, string, elements, method=method)
 
 
 def torque_drag(survey: Survey, string: DrillString, operation: str = "trip_out", *,
-                elements: Optional[int] = None, element_length: float = ELEMENT_LENGTH,
+                elements: Optional[int] = None, element_length: float = ELEMENT_LENGTH, method: str = "johancsik",
                 **conditions: float) -> TorqueDragResult:
     """Torque and drag of one operation (one of :data:`OPERATIONS`) with the string's bit at its full length;
     ``conditions`` are the keywords of ``SoftString.parameters`` (mud_density [kg/m^3], cased_hole_friction,
-    open_hole_friction, casing_shoe_depth [m], weight_on_bit [N], bit_torque [N m], speeds, hole sizes)."""
-    return soft_string(survey, string, elements=elements, element_length=element_length).run(operation,
-                                                                                               **conditions)
+    open_hole_friction, casing_shoe_depth [m], weight_on_bit [N], bit_torque [N m], speeds, hole sizes);
+    ``method`` as in :func:`soft_string`."""
+    model = soft_string(survey, string, elements=elements, element_length=element_length, method=method)
+    return model.run(operation, **conditions)
 
 
 def node_table(result: TorqueDragResult):
@@ -299,7 +301,7 @@ class Broomstick:
 def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[float] = (0.1, 0.2, 0.3, 0.4), *,
                depths: Optional[Sequence[float]] = None, depth_step: float = 30.0,
                element_length: float = ELEMENT_LENGTH, operations: Sequence[str] = BROOMSTICK_OPERATIONS,
-               **conditions: float) -> Broomstick:
+               method: str = "johancsik", **conditions: float) -> Broomstick:
     """Hook load against bit depth for each operation and friction factor while the string is run in to each depth
     (``string_to_depth``: the bottom-hole assembly kept, pipe added at the top), the usual broomstick plot.
 
@@ -307,6 +309,7 @@ def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[f
     the cased-hole one too (the usual practice: a known casing factor, the open-hole one calibrated against the
     plot). ``depths``: the bit depths [m] (default every ``depth_step`` metres and the string's full length).
     Rotating off bottom carries no axial friction: its hook load is the same for every friction factor.
+    ``method`` as in :func:`soft_string`.
     """
     factors = tuple(float(mu) for mu in friction_factors)
     if not factors:
@@ -325,7 +328,8 @@ def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[f
     rows: Dict[str, list] = {"bit_depth": [], "friction_factor": [], "operation": [], "hook_load": [],
                              "surface_torque": []}
     for depth in depths:
-        model = soft_string(survey, string_to_depth(string, float(depth)), element_length=element_length)
+        model = soft_string(survey, string_to_depth(string, float(depth)), element_length=element_length,
+                            method=method)
         for mu in factors:
             given = dict(conditions, open_hole_friction=mu)
             if vary_cased:

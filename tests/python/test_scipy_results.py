@@ -120,3 +120,19 @@ def test_a_result_with_stop_events_pickles():
     back = pickle.loads(pickle.dumps(r))
     assert back.t_events[0] == pytest.approx(r.t_events[0])
     assert back.events[0].state_after == pytest.approx(r.events[0].state_after)
+
+
+def test_conditions_read_back_from_solver_options_are_usable():
+    # The list attribute hands out references into the C++ vector: they are constructed objects (repr, fields,
+    # pickling), not the never-constructed instances that __new__ alone makes.
+    from frictionsim import _core
+
+    options = _core.SolverOptions()
+    condition = fs.StopCondition(state="disc_speed", level=0.5, direction=-1, terminal=True)
+    options.stop_conditions = [condition]
+    (back,) = options.stop_conditions
+    assert repr(back) == repr(condition) and back.level == 0.5 and back.direction == -1
+    assert repr(pickle.loads(pickle.dumps(back))) == repr(condition)
+    with pytest.raises(TypeError, match="never constructed"):
+        repr(fs.StopCondition.__new__(fs.StopCondition))
+

@@ -465,20 +465,6 @@ def test_minimum_curvature_properties_on_random_surveys(stations):
 
 
 # ------------------------------------------------------------------------------ Aadnoy's curvature form (method=)
-def _has_method_keyword():
-    """SoftString(..., method=) arrives with the bindings/wells.cpp change of issue 14 (Aadnoy's method)."""
-    try:
-        fs.SoftString(fs.Survey([0.0, 10.0], [0.0, 0.0], [0.0, 0.0]), fs.DrillString([_pipe(10.0)]), 1,
-                      method="aadnoy")
-    except TypeError:
-        return False
-    return True
-
-
-needs_method = pytest.mark.skipif(not _has_method_keyword(),
-                                  reason="this build's SoftString has no method keyword (bindings/wells.cpp)")
-
-
 def _build_tension(theta, theta_bottom, force_bottom, radius, w, sigma):
     """The constant-curvature build, contact on the high side: dF/dtheta = -R (w cos theta + sigma (F/R - w sin
     theta)) is linear, F = a cos theta + b sin theta + C exp(-sigma theta) (Aadnoy & Andersen 2001)."""
@@ -491,7 +477,6 @@ def _build_tension(theta, theta_bottom, force_bottom, radius, w, sigma):
     return particular(theta) + (force_bottom - particular(theta_bottom)) * math.exp(-sigma * (theta - theta_bottom))
 
 
-@needs_method
 @pytest.mark.parametrize("elements", [5, 10, 300])
 def test_aadnoy_method_is_the_build_closed_form_at_any_element_length(elements):
     """A 600 m build to 60 degrees above 2400 m of tangent: method='aadnoy' gives the closed form of the continuous
@@ -513,7 +498,6 @@ def test_aadnoy_method_is_the_build_closed_form_at_any_element_length(elements):
         assert 0.3 * 1.2e-4 * element < error < 1.5 * 1.2e-4 * element
 
 
-@needs_method
 def test_aadnoy_method_follows_the_continuous_equation_through_the_contact_switch():
     """The J-shaped well of the welleng comparison: in its build the contact moves from the low side (weight) to
     the high side (tension). Aadnoy's elements split where F kappa = w sin I, so 150 m elements give the SciPy
@@ -545,7 +529,6 @@ def test_aadnoy_method_follows_the_continuous_equation_through_the_contact_switc
         assert abs(stepped / f[0] - 1.0) > 1e-3
 
 
-@needs_method
 def test_soft_string_method_keyword_property_repr_pickling_and_errors():
     survey = wells.read_survey(SURVEYS / "s_well.csv")
     string = fs.DrillString([_pipe(3000.0)])

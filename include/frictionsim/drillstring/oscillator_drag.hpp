@@ -105,8 +105,9 @@ struct SlidingTransfer {
 
 class OscillatorDrag {
 public:
-    OscillatorDrag(const Survey& survey, const DrillString& string, std::size_t elements)
-        : soft_(survey, string, elements), wave_(string, elements), response_(survey, string) {}
+    OscillatorDrag(const Survey& survey, const DrillString& string, std::size_t elements,
+                   TorqueDragMethod method = TorqueDragMethod::johancsik)
+        : soft_(survey, string, elements, method), wave_(string, elements), response_(survey, string) {}
 
     const SoftString& soft_string() const { return soft_; }
     const AxialWave& axial_wave() const { return wave_; }

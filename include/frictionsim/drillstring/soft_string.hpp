@@ -163,7 +163,9 @@ struct SoftStringParams {
 inline constexpr std::array<Field<SoftStringParams>, 11> SoftStringParams::fields() {
     using P = SoftStringParams;
     return {{
-        {"mud_density", "rho_m", "kg/m^3", Rule::non_negative(), &P::mud_density, "Mud density (inside and out)."},
+        {"mud_density", "rho_m", "kg/m^3",
+         Rule::interval(0.0, 1.0e4).because("drilling fluids are 800-2600 kg/m^3; steel is 7850"), &P::mud_density,
+         "Mud density (inside and out)."},
         {"cased_hole_friction", "mu_c", "-", Rule::non_negative(), &P::cased_hole_friction,
          "Friction factor inside the casing."},
         {"open_hole_friction", "mu_o", "-", Rule::non_negative(), &P::open_hole_friction,
