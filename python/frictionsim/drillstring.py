@@ -218,51 +218,59 @@ def stick_slip_map(rig: StringRig, surface_speeds: Sequence[float], weights_on_b
 
 
 # ---------------------------------------------------------------------------------------------- plots
-def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Optional[tuple] = None):
+# Multi-panel plots: ``ax`` is a sequence of Axes, one per panel (None: a new figure); they return the Figure;
+# style keywords reach the lines (or the map's pcolormesh). A figure given through ``ax`` keeps its own title.
+def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Optional[tuple] = None, ax=None,
+                         **style: Any):
     """One panel per (label, rig, result): bit and surface speed [rad/s] against t [s] within ``window``."""
-    from matplotlib.figure import Figure
+    from .plots import _panels, _style
 
-    figure = Figure(figsize=(10.0, 2.0 + 2.4 * len(items)), layout="constrained")
-    axes = np.atleast_1d(figure.subplots(len(items), 1, sharex=True, squeeze=False)[:, 0])
-    for ax, (label, rig, result) in zip(axes, items):
+    figure, axes = _panels(ax, len(items), 10.0, 2.0 + 2.4 * len(items), rows=True)
+    for panel, (label, rig, result) in zip(axes, items):
         t = result.t
         inside = (t >= window[0]) & (t <= window[1]) if window is not None else np.ones(len(t), bool)
-        ax.plot(t[inside], surface_speed(rig, result)[inside], color="tab:blue", lw=1.0, label="surface")
-        ax.plot(t[inside], bit_speed(rig, result)[inside], color="tab:red", lw=1.0, label="bit")
-        ax.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label="set speed")
-        ax.set_ylabel("speed [rad/s]")
-        ax.set_title(label, fontsize=9)
-        ax.legend(fontsize=8, loc="upper right")
+        panel.plot(t[inside], surface_speed(rig, result)[inside], **_style({"color": "tab:blue", "lw": 1.0}, style),
+                   label="surface")
+        panel.plot(t[inside], bit_speed(rig, result)[inside], **_style({"color": "tab:red", "lw": 1.0}, style),
+                   label="bit")
+        panel.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label="set speed")
+        panel.set_ylabel("speed [rad/s]")
+        panel.set_title(label, fontsize=9)
+        panel.legend(fontsize=8, loc="upper right")
     axes[-1].set_xlabel("t [s]")
-    figure.suptitle((title + "\n" if title else "") + "bit and surface speed of the drill string", fontsize=10)
+    if ax is None:
+        figure.suptitle((title + "\n" if title else "") + "bit and surface speed of the drill string", fontsize=10)
     return figure
 
 
-def speeds_figure(rig: StringRig, result: Result, *, title: str = ""):
-    """Bit and surface speed [rad/s] over time (top), surface and bit torque [kN m] (bottom)."""
-    from matplotlib.figure import Figure
+def speeds_figure(rig: StringRig, result: Result, *, title: str = "", ax=None, **style: Any):
+    """Bit and surface speed [rad/s] over time (top), surface and bit torque [kN m] (bottom); ``ax``: two Axes."""
+    from .plots import _panels, _style
 
-    figure = Figure(figsize=(10.0, 6.5), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True)
+    figure, (top, bottom) = _panels(ax, 2, 10.0, 6.5, rows=True)
     t = result.t
-    top.plot(t, surface_speed(rig, result), color="tab:blue", lw=1.0, label="surface (top drive)")
-    top.plot(t, bit_speed(rig, result), color="tab:red", lw=1.0, label="bit")
+    surface, bit = _style({"color": "tab:blue", "lw": 1.0}, style), _style({"color": "tab:red", "lw": 1.0}, style)
+    top.plot(t, surface_speed(rig, result), **surface, label="surface (top drive)")
+    top.plot(t, bit_speed(rig, result), **bit, label="bit")
     top.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label=f"set speed {rig.surface_speed:g} rad/s")
     top.set_ylabel("speed [rad/s]")
     top.legend(fontsize=8, loc="upper right")
-    bottom.plot(t, surface_torque(rig, result) / 1e3, color="tab:blue", lw=1.0, label="surface torque")
-    bottom.plot(t, bit_torque(rig, result) / 1e3, color="tab:red", lw=1.0, label="torque on bit")
+    bottom.plot(t, surface_torque(rig, result) / 1e3, **surface, label="surface torque")
+    bottom.plot(t, bit_torque(rig, result) / 1e3, **bit, label="torque on bit")
     bottom.set_xlabel("t [s]")
     bottom.set_ylabel("torque [kN m]")
     bottom.legend(fontsize=8, loc="upper right")
-    figure.suptitle(title or "drill string: bit and surface speed", fontsize=10)
+    if ax is None:
+        figure.suptitle(title or "drill string: bit and surface speed", fontsize=10)
     return figure
 
 
-def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None):
+def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None, ax=None,
+                          **style: Any):
     """Peak bit speed / w_set (left) and the bit's stuck fraction (right) over (w_set, W [kN]); a black dot where
-    the bit sticks, a red cross where the run failed, a star at ``point`` (w_set, W [N])."""
-    from matplotlib.figure import Figure
+    the bit sticks, a red cross where the run failed, a star at ``point`` (w_set, W [N]); ``ax``: two Axes; style
+    keywords go to the maps (pcolormesh: ``cmap`` replaces both colour maps)."""
+    from .plots import _panels
 
     speeds, weights = m.surface_speeds, m.weights_on_bit / 1e3
 
@@ -272,26 +280,27 @@ def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[t
         mid = 0.5 * (v[1:] + v[:-1])
         return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
-    figure = Figure(figsize=(13.0, 5.2), layout="constrained")
-    axes = figure.subplots(1, 2)
+    figure, axes = _panels(ax, 2, 13.0, 5.2)
     xx, yy = np.meshgrid(speeds, weights, indexing="ij")
-    for ax, (values, label, cmap) in zip(axes, [(m.peak_ratio, "peak bit speed / $\\omega_{set}$ [-]", "viridis"),
-                                                 (m.stuck_fraction, "fraction of time the bit is stuck", "magma")]):
-        mesh = ax.pcolormesh(edges(speeds), edges(weights), np.asarray(values, float).T, cmap=cmap, shading="flat")
-        figure.colorbar(mesh, ax=ax, label=label)
+    for panel, (values, label, cmap) in zip(axes, [(m.peak_ratio, "peak bit speed / $\\omega_{set}$ [-]", "viridis"),
+                                                    (m.stuck_fraction, "fraction of time the bit is stuck", "magma")]):
+        mesh = panel.pcolormesh(edges(speeds), edges(weights), np.asarray(values, float).T,
+                                **dict({"cmap": cmap, "shading": "flat"}, **style))
+        figure.colorbar(mesh, ax=panel, label=label)
         for (i, j), value in np.ndenumerate(values):
             if np.isfinite(value):
-                ax.annotate(f"{value:.2f}", (speeds[i], weights[j]), textcoords="offset points", xytext=(0, -11),
-                            ha="center", fontsize=7, color="w" if value < np.nanmean(values) else "k")
-        ax.plot(xx[m.sticks], yy[m.sticks], "o", color="k", markersize=4, linestyle="none", label="bit sticks")
+                panel.annotate(f"{value:.2f}", (speeds[i], weights[j]), textcoords="offset points", xytext=(0, -11),
+                               ha="center", fontsize=7, color="w" if value < np.nanmean(values) else "k")
+        panel.plot(xx[m.sticks], yy[m.sticks], "o", color="k", markersize=4, linestyle="none", label="bit sticks")
         if m.failed.any():
-            ax.plot(xx[m.failed], yy[m.failed], "x", color="r", markersize=6, linestyle="none", label="run failed")
+            panel.plot(xx[m.failed], yy[m.failed], "x", color="r", markersize=6, linestyle="none", label="run failed")
         if point is not None:
-            ax.plot(point[0], point[1] / 1e3, marker="*", markersize=15, color="r", markeredgecolor="k",
-                    linestyle="none", label="time series")
-        ax.set_xlabel("surface speed $\\omega_{set}$ [rad/s]")
-        ax.set_ylabel("weight on bit W [kN]")
-        ax.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
-    share = f"{int(m.sticks.sum())} of {m.sticks.size} points stick-slip"
-    figure.suptitle((title + "\n" if title else "") + f"stick-slip map of the string: {share}", fontsize=10)
+            panel.plot(point[0], point[1] / 1e3, marker="*", markersize=15, color="r", markeredgecolor="k",
+                       linestyle="none", label="time series")
+        panel.set_xlabel("surface speed $\\omega_{set}$ [rad/s]")
+        panel.set_ylabel("weight on bit W [kN]")
+        panel.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False)
+    if ax is None:
+        share = f"{int(m.sticks.sum())} of {m.sticks.size} points stick-slip"
+        figure.suptitle((title + "\n" if title else "") + f"stick-slip map of the string: {share}", fontsize=10)
     return figure

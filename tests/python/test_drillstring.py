@@ -237,6 +237,29 @@ def test_surface_torque_bit_torque_and_stuck_contacts_follow_their_definitions()
     assert work["drive_work"] == pytest.approx(stored + dissipated, rel=1e-7)
 
 
+def test_the_speed_plots_draw_into_given_axes_with_the_callers_style():
+    from matplotlib.figure import Figure
+
+    rig = fs_rig(5)
+    result = fs.simulate(rig, 3.0)
+    mine = Figure()
+    top, bottom = mine.subplots(2, 1)
+    assert ds.speeds_figure(rig, result, ax=[top, bottom], lw=2.5) is mine and mine.get_suptitle() == ""
+    surface, bit = top.get_lines()[:2]
+    assert np.array_equal(bit.get_ydata(), ds.bit_speed(rig, result)) and bit.get_linewidth() == 2.5
+    assert np.array_equal(surface.get_xdata(), result.t)
+    assert np.array_equal(bottom.get_lines()[1].get_ydata(), ds.bit_torque(rig, result) / 1e3)
+    panels = Figure().subplots(2, 1)
+    figure = ds.speeds_panels_figure([("a", rig, result), ("b", rig, result)], window=(1.0, 2.0), ax=panels,
+                                     color="k")
+    inside = (result.t >= 1.0) & (result.t <= 2.0)
+    assert figure is panels[0].figure and np.array_equal(panels[1].get_lines()[1].get_xdata(), result.t[inside])
+    assert panels[0].get_lines()[0].get_color() == "k"
+    with pytest.raises(fs.InvalidParameterError, match="ax"):
+        ds.speeds_figure(rig, result, ax=[top])
+    assert len(ds.speeds_figure(rig, result).axes) == 2  # without ax: a new figure with both panels
+
+
 def test_keywords_properties_repr_and_pickle_round_trip():
     string = ds.field_string(pipe_length=900.0, collar_length=100.0)
     assert string.length == 1000.0 and len(string) == 2
@@ -407,6 +430,14 @@ def test_the_demos_field_string_map_has_the_trends_of_velocity_weakening(tmp_pat
     assert np.all(np.diff(m.stuck_fraction, axis=0) <= 1e-12)
     assert np.all(np.diff(m.stuck_fraction, axis=1) >= -1e-12)
     assert part.measures.sticks and part.measures.peak_ratio > 2.0
+    # the map draws into the caller's two Axes, style keywords reaching the maps, the caller's figure untitled
+    from matplotlib.figure import Figure
+
+    mine = Figure()
+    axes = mine.subplots(1, 2)
+    assert ds.stick_slip_map_figure(m, ax=axes, cmap="cividis") is mine and mine.get_suptitle() == ""
+    assert [a.collections[0].get_cmap().name for a in axes] == ["cividis", "cividis"]
+    assert np.array_equal(axes[1].collections[0].get_array().reshape(m.stuck_fraction.T.shape), m.stuck_fraction.T)
     written = {p.name for p in part.write(tmp_path / "field_string")}
     assert written == {"time_series.csv", "stick_slip_map.csv", "speeds.png", "stick_slip_map.png"}
     series = pd.read_csv(tmp_path / "field_string" / "time_series.csv")
