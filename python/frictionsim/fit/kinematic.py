@@ -247,7 +247,7 @@ _COMMON_DOC = """
         iteration at INFO to ``logging.getLogger("frictionsim")`` and shows it on stderr when no logging is
         configured), callback (None: ``callback(progress)`` with a :class:`frictionsim.fit.FitProgress` after
         every differential-evolution generation and least-squares iteration; a true return value (True,
-        np.True_; None goes on) stops the search at the best point found, and the result is then not a success).
+        ``np.True_``; None goes on) stops the search at the best point found, and the result is then not a success).
 
     Returns
     -------

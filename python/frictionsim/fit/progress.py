@@ -91,7 +91,7 @@ class _Reporter:
 
 
 def _wants_stop(answer: Any) -> bool:
-    """The callback's answer as a stop request: None -> go on, else its truth value (np.True_ stops like True)."""
+    """The callback's answer as a stop request: None -> go on, else its truth value (``np.True_`` stops like True)."""
     return answer is not None and bool(answer)
 
 
