@@ -114,18 +114,24 @@ def test_collect_and_write_metadata(tmp_path):
     assert error.value.parameter == "directory"
 
 
-def test_git_revision_of_a_source_tree(tmp_path):
-    tree = tmp_path / "src"
-    package = tree / "python" / "frictionsim"
-    package.mkdir(parents=True)
-    (package / "module.py").write_text("x = 1\n")
-    git = ["git", "-C", str(tree), "-c", "user.name=t", "-c", "user.email=t@t"]
+def _committed_repository(root):
+    """``root`` made a git work tree with everything in it committed; the git command prefix for it."""
+    git = ["git", "-C", str(root), "-c", "user.name=t", "-c", "user.email=t@t"]
     try:
         subprocess.run(git[:3] + ["init", "-q"], check=True)
         subprocess.run(git + ["add", "."], check=True)
         subprocess.run(git + ["commit", "-q", "-m", "one"], check=True)
     except (OSError, subprocess.CalledProcessError):
         pytest.skip("no git program")
+    return git
+
+
+def test_git_revision_of_a_source_tree(tmp_path):
+    tree = tmp_path / "src"
+    package = tree / "python" / "frictionsim"
+    package.mkdir(parents=True)
+    (package / "module.py").write_text("x = 1\n")
+    git = _committed_repository(tree)
     head = subprocess.run(git[:3] + ["rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     assert provenance.git_revision(package) == (head, False)
     (package / "module.py").write_text("x = 2\n")
@@ -146,13 +152,7 @@ def test_git_revision_ignores_an_unrelated_outer_repository(tmp_path):
     (vendored / "module.py").write_text("x = 1\n")
     (outer / "python" / "frictionsim").mkdir(parents=True)  # even beside a python/frictionsim of its own
     (outer / "python" / "frictionsim" / "other.py").write_text("y = 1\n")
-    git = ["git", "-C", str(outer), "-c", "user.name=t", "-c", "user.email=t@t"]
-    try:
-        subprocess.run(git[:3] + ["init", "-q"], check=True)
-        subprocess.run(git + ["add", "."], check=True)
-        subprocess.run(git + ["commit", "-q", "-m", "one"], check=True)
-    except (OSError, subprocess.CalledProcessError):
-        pytest.skip("no git program")
+    _committed_repository(outer)
     assert provenance.git_revision(vendored) is None
     assert provenance.git_revision(outer / "python") is None  # not the package directory either
     assert provenance.git_revision(outer / "python" / "frictionsim") is not None  # frictionsim's layout: recorded
