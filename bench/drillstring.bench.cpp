@@ -18,14 +18,14 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/drillstring/string_rig.hpp>
-#include <frictionsim/drillstring/torsional_string.hpp>
+#include <frictionsim/string/string_rig.hpp>
+#include <frictionsim/string/torsional_string.hpp>
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
 
 // The Eigen Rosenbrock integrator (RODAS4, Method::rosenbrock) joins the comparison where frictionsim::eigen
 // provides it (FRICTIONSIM_EIGEN) and its header is in the tree.
-#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN && __has_include(<frictionsim/solve/rosenbrock.hpp>)
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN && __has_include(<frictionsim/eigen/rosenbrock.hpp>)
 #define FRICTIONSIM_BENCH_RODAS4 1
 #endif
 

@@ -33,6 +33,7 @@
 #include <frictionsim/friction/laws.hpp>
 #include <frictionsim/contact/switching.hpp>
 #include <frictionsim/contact/disc_contact.hpp>
+#include <frictionsim/papers.hpp>
 #include <frictionsim/rigs/reference_setups.hpp>
 
 using namespace frictionsim;

@@ -13,8 +13,8 @@
 
 #include <benchmark/benchmark.h>
 
-#include <frictionsim/drillstring/string_rig.hpp>
-#include <frictionsim/drillstring/torsional_string.hpp>
+#include <frictionsim/string/string_rig.hpp>
+#include <frictionsim/string/torsional_string.hpp>
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
 

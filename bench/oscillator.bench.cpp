@@ -11,7 +11,7 @@
 #include <cmath>
 #include <vector>
 
-#include <frictionsim/drillstring/oscillator_drag.hpp>
+#include <frictionsim/wells/oscillator_drag.hpp>
 
 using namespace frictionsim;
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <string>
 
-#include <frictionsim/drillstring/soft_string.hpp>
+#include <frictionsim/wells/soft_string.hpp>
 
 using namespace frictionsim;
 

@@ -92,5 +92,10 @@ void register_contact(py::module_& m);
 py::object register_torsional(py::module_& m);
 /// fs.PipeSection, fs.DrillString, fs.NavarroLopezBit and the field-scale fs.StringRig (bindings/drillstring.cpp).
 py::object register_drillstring(py::module_& m);
+/// fs.NavarroLopez2Dof and fs.NavarroLopez4Dof, the lumped strings of Navarro-Lopez & Cortes (bindings/navarro_lopez.cpp).
+py::object register_navarro_lopez_2dof(py::module_& m);
+py::object register_navarro_lopez_4dof(py::module_& m);
+/// fs.TorsionalString and fs.aarsnes_shor_well_b (bindings/torsional_string.cpp); None without Eigen.
+py::object register_torsional_string(py::module_& m);
 
 }  // namespace frictionsim::python

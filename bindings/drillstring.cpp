@@ -16,7 +16,7 @@
 #include <variant>
 #include <vector>
 
-#include <frictionsim/drillstring/string_rig.hpp>
+#include <frictionsim/string/string_rig.hpp>
 
 #include "law_binding.hpp"
 #include "simulation.hpp"
@@ -119,6 +119,31 @@ template <class P, std::size_t N>
         if (!known) throw py::type_error(std::string(owner) + "() got an unexpected keyword argument '" + key + "'");
     }
     throw py::type_error(std::string(owner) + "(): an unexpected keyword argument");
+}
+
+/// How open codes write the drag bit's torque, T = c_c eps a^2 d + c_f gamma mu a W_f: their constants on the
+/// cutting and the wear-flat terms (DetournayBit's law has one constant c on both: c_c = c_f = c).
+struct TorqueConvention {
+    const char* name;
+    double cutting, friction;
+    const char* form;
+};
+constexpr TorqueConvention torque_conventions[] = {
+    {"detournay_defourny", DetournayBit::detournay_defourny_constant, DetournayBit::detournay_defourny_constant,
+     "T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007)"},
+    {"unit", DetournayBit::unit_constant, DetournayBit::unit_constant,
+     "T = eps a^2 d + gamma mu a W_f (codes that drop the half)"},
+    {"half_cutting", DetournayBit::detournay_defourny_constant, DetournayBit::unit_constant,
+     "T = eps a^2 d / 2 + gamma mu a W_f (the wear flats' half absorbed into gamma: here c = 1/2, gamma = 2 gamma')"},
+};
+
+const TorqueConvention& torque_convention(const std::string& name) {
+    std::string names;
+    for (const TorqueConvention& c : torque_conventions) {
+        if (name == c.name) return c;
+        names += std::string(names.empty() ? "'" : ", '") + c.name + "'";
+    }
+    throw InvalidParameter("convention", "DetournayBit: convention must be one of " + names + " (got '" + name + "')");
 }
 
 // ---- PipeSection, DrillString ------------------------------------------------------------------------------------
@@ -518,7 +543,10 @@ are a cutting part proportional to the depth of cut per revolution d plus a fric
 
     W = zeta eps a d + a l sigma,   T = c eps a^2 d + c gamma mu a (a l sigma)
 
-c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half. As a StringRig's bit
+c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half; codes also differ
+in where the half sits (some put it on the cutting term only and absorb the wear flats' into their gamma).
+DetournayBit.CONVENTIONS names the forms (cutting constant, wear-flat constant, formula), from_convention builds the
+bit of a code from that code's parameters, and convention names this bit's. As a StringRig's bit
 under weight_on_bit W: d = depth_at_weight(W), T turning forwards whatever the speed, the stuck bit held within
 |T| (turning backwards only the wear flats rub). The delayed depth of cut of Richard-Germay-Detournay (axial-
 torsional coupling through a state-dependent delay) is not modelled. Defaults: an illustrative 8.5" PDC bit.
@@ -529,6 +557,10 @@ Keywords
     def_field_properties(drag, detournay_fields, [](const DetournayBit& b) -> const DetournayBit::Params& {
         return b.params();
     });
+    py::dict conventions;
+    for (const TorqueConvention& c : torque_conventions)
+        conventions[c.name] = py::make_tuple(c.cutting, c.friction, c.form);
+    drag.attr("CONVENTIONS") = conventions;
     options.disable_function_signatures();
     drag.def(py::init([](const py::kwargs& kwargs) {
                  std::size_t used = 0;
@@ -547,6 +579,35 @@ Keywords
              py::arg("weight_on_bit"),
              "Steady depth of cut per revolution d = (W - a l sigma) / (zeta eps a) [m] at weight on bit W [N] "
              "(0 below the contact force).")
+        .def_static("depth_of_cut", py::vectorize(&DetournayBit::depth_of_cut), py::arg("rate_of_penetration"),
+                    py::arg("angular_speed"),
+                    "d = 2 pi V / Omega [m per revolution] from the rate of penetration V [m/s] and the angular speed "
+                    "Omega [rad/s] (> 0: the bit cuts only while it turns forwards); arrays broadcast.")
+        .def_static("from_convention", [](const std::string& convention, const py::kwargs& kwargs) {
+                const TorqueConvention& c = torque_convention(convention);
+                std::size_t used = 0;
+                DetournayBit::Params p = table_from_kwargs(kwargs, detournay_fields, "DetournayBit", used);
+                if (used != kwargs.size()) refuse_unknown_keyword(kwargs, detournay_fields, {}, "DetournayBit");
+                if (kwargs.contains("torque_constant"))
+                    throw InvalidParameter("torque_constant", "DetournayBit.from_convention: the convention sets "
+                                                              "torque_constant; give one or the other");
+                // T = c_c eps a^2 d + c_f gamma' mu a W_f  ==  c eps a^2 d + c gamma mu a W_f
+                p.torque_constant = c.cutting;
+                p.contact_orientation *= c.friction / c.cutting;
+                return DetournayBit(p);
+            },
+            py::arg("convention"),
+            "The bit of a code that writes its torque in `convention` (a key of DetournayBit.CONVENTIONS), with "
+            "that code's parameters by keyword (contact_orientation is the code's gamma): T = c_c eps a^2 d + c_f "
+            "gamma' mu a W_f becomes this law's T = c eps a^2 d + c gamma mu a W_f with c = c_c, gamma = gamma' "
+            "c_f / c_c. The weight on bit has no such constant.")
+        .def_property_readonly("convention", [](const DetournayBit& b) -> py::object {
+                for (const TorqueConvention& c : torque_conventions)
+                    if (c.cutting == c.friction && b.params().torque_constant == c.cutting) return py::str(c.name);
+                return py::none();
+            },
+            "The name of the convention whose torque this bit writes with its own gamma (torque_constant 1/2: "
+            "'detournay_defourny', 1: 'unit'), or None for another constant.")
         .def("weight_on_bit", py::vectorize([](DetournayBit& b, double depth) { return b.weight_on_bit(depth); }),
              py::arg("depth_of_cut"), "W = zeta eps a d + a l sigma [N] at depth of cut d [m].")
         .def("torque_on_bit", py::vectorize([](DetournayBit& b, double depth) { return b.torque_on_bit(depth); }),

@@ -1,6 +1,7 @@
 // frictionsim._core: the C++ engine for the frictionsim Python package. The Python modules in
 // python/frictionsim/ re-export these classes and add what NumPy/SciPy do well (fitting, signals, plots).
 #include "common.hpp"
+#include "simulation.hpp"
 
 namespace frictionsim::python {
 
@@ -71,6 +72,8 @@ PYBIND11_MODULE(_core, m) {
 #else
     m.attr("HAS_SUNDIALS") = false;
 #endif
+    // False when built without Eigen: no TorsionalString, simulate(method="rosenbrock") is refused.
+    m.attr("HAS_EIGEN") = has_eigen;
     m.def("_rebuild", [](const py::type& cls, const py::tuple& args, const py::dict& kwargs, const std::string& factory) {
         if (cls.attr("__module__").cast<std::string>() != "frictionsim._core")
             throw py::type_error("_rebuild: only frictionsim._core classes are rebuilt");
@@ -83,8 +86,12 @@ PYBIND11_MODULE(_core, m) {
     register_results(m);
     register_contact(m);
     // the rigs simulate() runs: each register_* binds one and hands its class back
-    m.attr("RIGS") = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m),
-                                    register_drillstring(m));
+    py::tuple rigs = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m),
+                                    register_drillstring(m), register_navarro_lopez_2dof(m),
+                                    register_navarro_lopez_4dof(m));
+    if (const py::object field = register_torsional_string(m); !field.is_none())  // needs Eigen
+        rigs = py::reinterpret_steal<py::tuple>(PySequence_Concat(rigs.ptr(), py::make_tuple(field).ptr()));
+    m.attr("RIGS") = rigs;
     register_wells(m);
     guard_construction(m);
 }

@@ -74,7 +74,8 @@ void register_results(py::module_& m) {
                "cvode_bdf for stiff laws (LuGre, ElastoPlastic), dormand_prince otherwise")
         .value("dormand_prince", Method::dormand_prince, "explicit RK5(4), dense output, root location")
         .value("cvode_bdf", Method::cvode_bdf, "SUNDIALS CVODE BDF + Newton, dense linear solver")
-        .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point");
+        .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point")
+        .value("rosenbrock", Method::rosenbrock, "RODAS4 (linearly implicit, stiff; needs Eigen: HAS_EIGEN)");
 
     py::enum_<LinearSolver>(m, "LinearSolver", "Linear solver of CVODE BDF's Newton iteration.")
         .value("automatic", LinearSolver::automatic, "band when the system declares a banded Jacobian, else dense")

@@ -1,7 +1,8 @@
 // Running a rig variant from Python: the GIL is released for the whole integration, so simulations in threads
 // run in parallel (a Python callable signal re-acquires it per call). Ctrl-C is polled between steps (the engine's
 // SolverOptions::interrupt), so it stops any run within a fraction of a second as KeyboardInterrupt.
-// CVODE is compiled in only where the extension links frictionsim::sundials (FRICTIONSIM_SUNDIALS=1).
+// CVODE is compiled in only where the extension links frictionsim::sundials (FRICTIONSIM_SUNDIALS=1), RODAS4
+// (Method::rosenbrock) only where it links frictionsim::eigen (FRICTIONSIM_EIGEN=1).
 #pragma once
 
 #include <memory>
@@ -15,6 +16,9 @@
 #include <frictionsim/solve/dormand_prince.hpp>
 #include <frictionsim/solve/options.hpp>
 #include <frictionsim/solve/simulate_with.hpp>
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+#include <frictionsim/eigen/rosenbrock.hpp>
+#endif
 #endif
 
 #include "common.hpp"
@@ -27,12 +31,28 @@ inline constexpr bool has_sundials = true;
 #else
 inline constexpr bool has_sundials = false;
 #endif
+/// Whether this extension was built with Eigen (RODAS4, the Moreau-Jean string): frictionsim._core.HAS_EIGEN.
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+inline constexpr bool has_eigen = true;
+#else
+inline constexpr bool has_eigen = false;
+#endif
+
+/// Method::rosenbrock in an extension without Eigen: refused saying how to get it.
+inline void require_eigen_for(Method method) {
+    if (method == Method::rosenbrock && !has_eigen)
+        throw InvalidParameter("method", "simulate: method = rosenbrock (RODAS4) needs Eigen, and this frictionsim "
+                                         "extension was built without it (frictionsim._core.HAS_EIGEN is False): "
+                                         "install Eigen 3 (Debian: libeigen3-dev) and reinstall frictionsim from "
+                                         "source, or use another method");
+}
 
 /// simulate() on the integrators this extension has. Built without SUNDIALS, only Dormand-Prince is compiled
 /// in: `automatic` takes it for every law (stiff ones need more, smaller steps but keep their accuracy), and a
 /// CVODE method asked for by name is refused saying how to get it.
 template <class System>
 Result simulate_built_in(const System& system, double t_end, const SolverOptions& options, double t_start) {
+    require_eigen_for(options.method);
 #if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
     return simulate(system, t_end, options, t_start);
 #else
@@ -47,9 +67,9 @@ Result simulate_built_in(const System& system, double t_end, const SolverOptions
                                              "in a clone; -C cmake.define.FRICTIONSIM_SUNDIALS=ON makes "
                                              "SUNDIALS required)");
     }
-    if (options.method == Method::rosenbrock) {
-        throw InvalidParameter("method", "simulate: method = rosenbrock is not built into the Python extension");
-    }
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+    if (options.method == Method::rosenbrock) return simulate_with<Rodas4>(system, t_end, options, t_start);
+#endif
     SolverOptions resolved = options;
     resolved.method = Method::dormand_prince;
     return simulate_with<DormandPrince>(system, t_end, resolved, t_start);

@@ -19,9 +19,9 @@
 #include <utility>
 #include <vector>
 
-#include <frictionsim/drillstring/oscillator_drag.hpp>
-#include <frictionsim/drillstring/oscillator_response.hpp>
-#include <frictionsim/drillstring/soft_string.hpp>
+#include <frictionsim/wells/oscillator_drag.hpp>
+#include <frictionsim/wells/oscillator_response.hpp>
+#include <frictionsim/wells/soft_string.hpp>
 
 #include "table_binding.hpp"
 

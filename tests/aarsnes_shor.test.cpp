@@ -15,7 +15,7 @@
 
 #include <Eigen/Dense>
 
-#include <frictionsim/drillstring/torsional_string.hpp>
+#include <frictionsim/string/torsional_string.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include <frictionsim/contact/switching.hpp>
-#include <frictionsim/drillstring/bit_rock.hpp>
+#include <frictionsim/bits/bit_rock.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

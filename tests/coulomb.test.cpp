@@ -6,9 +6,9 @@
 #include <frictionsim/simulate.hpp>
 // The paths these headers had before issue 12 still build: they forward to contact/ and solve/ (each with a
 // #pragma message naming the new path).
-#include <frictionsim/rigs/contact_switching.hpp>
-#include <frictionsim/rigs/disc_contact.hpp>
-#include <frictionsim/solve/simulate.hpp>
+#include <frictionsim/contact/switching.hpp>
+#include <frictionsim/contact/disc_contact.hpp>
+#include <frictionsim/solve/simulate_with.hpp>
 
 #include "catch.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-#include <frictionsim/drillstring/sections.hpp>
+#include <frictionsim/string/sections.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

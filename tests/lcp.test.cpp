@@ -10,7 +10,7 @@
 
 #include <frictionsim/contact/switching.hpp>
 #include <frictionsim/friction/coulomb.hpp>
-#include <frictionsim/solve/lcp.hpp>
+#include <frictionsim/contact/lcp.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "catch.hpp"
-#include "frictionsim/drillstring/string_rig.hpp"
-#include "frictionsim/drillstring/torsional_string.hpp"
+#include "frictionsim/string/string_rig.hpp"
+#include "frictionsim/string/torsional_string.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/simulate.hpp"
-#include "frictionsim/solve/moreau_jean_events.hpp"
+#include "frictionsim/eigen/moreau_jean_events.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;

@@ -12,8 +12,8 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 
-#include <frictionsim/solve/chain_ldlt.hpp>
-#include <frictionsim/solve/moreau_jean.hpp>
+#include <frictionsim/eigen/chain_ldlt.hpp>
+#include <frictionsim/eigen/moreau_jean.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/drillstring/oscillator_drag.hpp>
-#include <frictionsim/drillstring/string_rig.hpp>
+#include <frictionsim/wells/oscillator_drag.hpp>
+#include <frictionsim/string/string_rig.hpp>
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/drillstring/oscillator_drag.hpp>
-#include <frictionsim/drillstring/oscillator_response.hpp>
+#include <frictionsim/wells/oscillator_drag.hpp>
+#include <frictionsim/wells/oscillator_response.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

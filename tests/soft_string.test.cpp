@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/drillstring/buckling.hpp>
-#include <frictionsim/drillstring/soft_string.hpp>
+#include <frictionsim/wells/buckling.hpp>
+#include <frictionsim/wells/soft_string.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

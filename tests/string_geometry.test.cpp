@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "catch.hpp"
-#include "frictionsim/drillstring/soft_string.hpp"
-#include "frictionsim/drillstring/string_geometry.hpp"
-#include "frictionsim/drillstring/string_rig.hpp"
+#include "frictionsim/wells/soft_string.hpp"
+#include "frictionsim/wells/string_geometry.hpp"
+#include "frictionsim/string/string_rig.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/simulate.hpp"
 #include "rejection.hpp"

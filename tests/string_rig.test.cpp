@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "catch.hpp"
-#include "frictionsim/drillstring/string_rig.hpp"
-#include "frictionsim/drillstring/string_rig_params.hpp"
+#include "frictionsim/string/string_rig.hpp"
+#include "frictionsim/string/string_rig_params.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/friction/dahl.hpp"
 #include "frictionsim/friction/lugre.hpp"

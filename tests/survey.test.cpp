@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/drillstring/survey.hpp>
+#include <frictionsim/wells/survey.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"

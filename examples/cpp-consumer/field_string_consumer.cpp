@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <vector>
 
-#include <frictionsim/drillstring/string_rig.hpp>
-#include <frictionsim/drillstring/torsional_string.hpp>
+#include <frictionsim/string/string_rig.hpp>
+#include <frictionsim/string/torsional_string.hpp>
 #include <frictionsim/simulate.hpp>
 
 #include "bit_rock_friction.hpp"

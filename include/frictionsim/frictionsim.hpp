@@ -5,7 +5,7 @@
 #include "analysis/cycle_mean.hpp"
 #include "analysis/limit_cycle.hpp"
 #include "contact/hydraulic_oscillator.hpp"
-#include "drillstring/sections.hpp"
+#include "string/sections.hpp"
 #include "error.hpp"
 #include "friction/coulomb.hpp"
 #include "friction/dahl.hpp"

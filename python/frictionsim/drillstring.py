@@ -1,6 +1,6 @@
 """Field-scale drill strings: what a run of a :class:`frictionsim.StringRig` gives.
 
-The model is C++ (``include/frictionsim/drillstring/string_rig.hpp``): :class:`~frictionsim.PipeSection`,
+The model is C++ (``include/frictionsim/string/string_rig.hpp``): :class:`~frictionsim.PipeSection`,
 :class:`~frictionsim.DrillString`, the bits :class:`~frictionsim.NavarroLopezBit` (velocity weakening) and
 :class:`DetournayBit` (the drag bit's depth of cut under the weight on bit) and :class:`~frictionsim.StringRig`.
 A string in a curved well takes the hole's inclination and the wall's normal force per node as arrays

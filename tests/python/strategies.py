@@ -76,6 +76,11 @@ TABLES: Dict[type, Dict[str, Param]] = {fs.NavarroLopezBit: _law_params(fs.Navar
                                         fs.DetournayBit: _law_params(fs.DetournayBit),
                                         fs.PipeSection: _law_params(fs.PipeSection, tied_by_construction=False),
                                         fs.StringRig: _law_params(fs.StringRig, tied_by_construction=False)}
+#: The field engine's tables (issue 22): the Navarro-Lopez strings and, where the extension has Eigen, the
+#: Moreau-Jean string (apart from TABLES, whose tests build a StringRig from each).
+FIELD_TABLES: Dict[type, Dict[str, Param]] = {
+    cls: _law_params(cls, tied_by_construction=False)
+    for cls in (fs.NavarroLopez2Dof, fs.NavarroLopez4Dof) + ((fs.TorsionalString,) if fs.HAS_EIGEN else ())}
 
 _SOLVER = fs._core.SolverOptions
 #: simulate() options: rule and typical values
@@ -115,7 +120,7 @@ def law_kwargs(draw, law: type, mutate: bool) -> Dict[str, float]:
     """Typical keywords of ``law`` (a keyword bounded by another drawn as that one plus an excess, so mu_static >=
     mu); with ``mutate``, one of them replaced by any number (not NaN where NaN means "unset": valid by design, but
     not by the properties' mu_static >= mu check). Any class of LAWS or TABLES."""
-    params = LAWS[law] if law in LAWS else TABLES[law]
+    params = LAWS[law] if law in LAWS else TABLES[law] if law in TABLES else FIELD_TABLES[law]
     kwargs: Dict[str, float] = {}
     for name, p in params.items():
         if p.held is not None:
@@ -134,5 +139,5 @@ def law_kwargs(draw, law: type, mutate: bool) -> Dict[str, float]:
 
 
 def table_kwargs(cls: type, mutate: bool) -> st.SearchStrategy:
-    """law_kwargs for the classes of TABLES (the drill-string tables)."""
+    """law_kwargs for the classes of TABLES (the drill-string tables) and FIELD_TABLES."""
     return law_kwargs(cls, mutate)

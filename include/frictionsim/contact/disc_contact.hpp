@@ -120,10 +120,11 @@ public:
         return Switching::initial_mode(law_, radius_ * w, normal_force_, z, shaft_torque / radius_);
     }
     /// New mode at a root; projects w to exactly zero on entering stick.
-    int switch_mode(double, double& w, double shaft_torque, const double*, int mode, const int* fired,
+    int switch_mode(double, double& w, double shaft_torque, double* z, int mode, const int* fired,
                     double) const {
         bool stop = false;
         const int next = Switching::switch_mode(law_, normal_force_, mode, fired, shaft_torque / radius_, stop);
+        if (!inert_) note_reversal(law_, normal_force_, z, mode, next);  // a memory of turning points (Leuven)
         if (stop) w = 0.0;
         return next;
     }

@@ -14,6 +14,10 @@
 // Optional: set-valued laws' `double slip_slope(double v_r, double normal_force, int direction) const` (dF/dv_r in
 // slip) and state laws' `partials`: the rigs' analytic Jacobians for CVODE are built from these; without them
 // CVODE builds its Jacobian from difference quotients. `static constexpr bool stiff = true` picks CVODE BDF.
+// Optional for a state law with a memory that changes only at reversals (Leuven's turning points):
+//      void on_reversal(double normal_force, double* z, int from_branch, int to_branch) const;
+// The memory is carried in its states z (rate 0 between events); every rig that locates the kink at v_r = 0 calls
+// note_reversal() (below) when it flips the branch, handing the law its states to update: exact, at the event.
 // Every law has `static constexpr const char* name`. A law never integrates anything itself.
 // check_friction_law<Law>() (below) static_asserts each requirement with a message naming it; the rigs and
 // ContactSwitching call it first, so a law that misses a member fails there, not deep inside a rig.
@@ -24,6 +28,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "../contact/mode.hpp"
 #include "../detail/traits.hpp"
 
 namespace frictionsim {
@@ -36,16 +41,6 @@ struct StatePartials {
     std::array<double, Z> rate_velocity{};           ///< d(dz_i/dt) / dv_r
     std::array<std::array<double, Z>, Z> rate_state{};  ///< d(dz_i/dt) / dz_j
 };
-
-/// Contact modes. Slip modes carry the sign of the relative velocity; stick is v_r = 0 held by friction
-/// (or, with a Karnopp band, |v_r| < band).
-enum ContactMode : int { slip_negative = -1, stick = 0, slip_positive = 1 };
-
-inline const char* contact_mode_name(int mode) {
-    return mode < 0 ? "slip_negative" : mode > 0 ? "slip_positive" : "stick";
-}
-
-inline int sign_of(double v) { return (v > 0.0) - (v < 0.0); }
 
 namespace detail {
 template <class L> using law_name_t = decltype(static_cast<const char*>(L::name));
@@ -65,6 +60,9 @@ template <class L> using state_names_of_t =
 template <class L> using partials_t =
     decltype(std::declval<const L&>().partials(0.0, 0.0, std::declval<const double*>(), 1).force_velocity);
 
+template <class L> using on_reversal_t = decltype(std::declval<const L&>().on_reversal(
+    0.0, std::declval<double*>(), 1, -1));
+
 template <class L, bool = detected<L, has_stick_t>::value>
 struct set_valued_law : std::false_type {};
 template <class L>
@@ -76,6 +74,21 @@ template <class Law>
 constexpr bool law_has_partials_v = detail::set_valued_law<Law>::value
                                         ? detail::detected<Law, detail::slip_slope_t>::value
                                         : detail::detected<Law, detail::partials_t>::value;
+
+/// Does Law keep a memory in its states that the rigs update at reversals (`on_reversal`)?
+template <class Law>
+constexpr bool law_remembers_reversals_v = detail::detected<Law, detail::on_reversal_t>::value;
+
+/// What a rig calls when it flips a state law's branch at a located zero of v_r (from -> to; equal: a touch or a
+/// standstill, nothing to remember): the law updates the memory it carries in z. A no-op for other laws.
+template <class Law>
+void note_reversal(const Law& law, double normal_force, double* z, int from_branch, int to_branch) {
+    if constexpr (law_remembers_reversals_v<Law>) {
+        if (from_branch != to_branch) law.on_reversal(normal_force, z, from_branch, to_branch);
+    } else {
+        (void)law, (void)normal_force, (void)z, (void)from_branch, (void)to_branch;
+    }
+}
 
 /// static_asserts naming the first missing member of the FrictionLaw concept above; true when Law meets it.
 template <class Law>
@@ -106,6 +119,10 @@ constexpr bool check_friction_law() {
                           "z, int branch, double* dz) const` of a state law");
             static_assert(detected<Law, kink_t>::value,
                           "FrictionLaw requires `static constexpr bool kink_at_zero_velocity` of a state law");
+            if constexpr (detected<Law, kink_t>::value && detected<Law, on_reversal_t>::value)
+                static_assert(Law::kink_at_zero_velocity,
+                              "FrictionLaw: a law with `on_reversal` needs `kink_at_zero_velocity = true` (the rigs "
+                              "locate the reversals it remembers)");
             static_assert(detected<Law, state_names_of_t>::value,
                           "FrictionLaw requires `static constexpr std::array<const char*, state_count> state_names` "
                           "of a state law");

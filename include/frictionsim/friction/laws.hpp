@@ -10,6 +10,7 @@
 #include "dahl.hpp"
 #include "elasto_plastic.hpp"
 #include "gms.hpp"
+#include "leuven.hpp"
 #include "lugre.hpp"
 #include "stribeck.hpp"
 
@@ -47,6 +48,6 @@ struct append<TypeList<T...>, More...> {
 };
 
 /// The engine's instantaneous friction laws, in the order Python lists them.
-using EngineLaws = TypeList<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip>;
+using EngineLaws = TypeList<Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip, Leuven>;
 
 }  // namespace frictionsim

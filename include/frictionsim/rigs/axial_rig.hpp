@@ -175,6 +175,7 @@ public:
     int switch_mode(double t, double* x, int mode, const int* fired) const {
         bool stop = false;
         const int next = Switching::switch_mode(law_, p_.normal_force, mode, fired, stick_force(t, x), stop);
+        note_reversal(law_, p_.normal_force, x + law_state, mode, next);  // a memory of turning points (Leuven)
         if (stop) x[velocity] = surface_velocity(t);  // v_r = 0 exactly: the new mode's guard starts at zero
         return next;
     }

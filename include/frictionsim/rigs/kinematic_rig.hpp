@@ -119,11 +119,11 @@ public:
 
     /// At a zero of v_r in slip s: where v_r heads next decides, reversal (-s), standstill (stick holding s) or
     /// a touch (s again). Leaving stick, |v_r| > 0 at the root: its sign.
-    int switch_mode(double t, double*, int mode, const int*) const {
-        const double v = v_r_(t);
-        if (!is_slip(mode)) return sign_of(v);
-        if (mode * v < 0.0) return -mode;  // already across: the look-ahead could jump a dip narrower than it
-        return heading(t, rest_holding(mode));
+    int switch_mode(double t, double* x, int mode, const int*) const {
+        const int next = next_mode(t, mode);
+        if constexpr (Z > 0) note_reversal(law_, normal_force(t), x + law_state, branch_of(mode), branch_of(next));
+        else (void)x;
+        return next;
     }
 
     std::array<double, state_size> initial_state() const {
@@ -146,6 +146,12 @@ private:
         if (!(std::isfinite(n) && n > 0.0))
             detail::reject("KinematicRig", "normal_force", "positive and finite at every time", n);
         return n;
+    }
+    int next_mode(double t, int mode) const {
+        const double v = v_r_(t);
+        if (!is_slip(mode)) return sign_of(v);
+        if (mode * v < 0.0) return -mode;  // already across: the look-ahead could jump a dip narrower than it
+        return heading(t, rest_holding(mode));
     }
     static bool is_slip(int mode) { return mode == slip_positive || mode == slip_negative; }
     /// The law's branch in `mode`: the slip direction, the one a stick holds, +1 for a stick from the start (where

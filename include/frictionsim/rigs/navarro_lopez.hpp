@@ -42,10 +42,10 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
-#include "../drillstring/bit_rock.hpp"
+#include "../bits/bit_rock.hpp"
 #include "../friction/law.hpp"
 #include "../parameters.hpp"
-#include "../solve/lcp.hpp"
+#include "../contact/lcp.hpp"
 
 namespace frictionsim {
 

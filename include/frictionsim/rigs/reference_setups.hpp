@@ -1,8 +1,7 @@
 // Textbook set-ups of the axial rig with no vibration, shared by tests, benchmarks and examples. The papers'
-// presets are in ../papers.hpp (included here for code that found them in this header before).
+// presets are in ../papers.hpp.
 #pragma once
 
-#include "../papers.hpp"
 #include "../friction/lugre.hpp"
 #include "axial_rig.hpp"
 

@@ -6,25 +6,40 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <type_traits>
 #include <vector>
 
 #include "../detail/validate.hpp"
+#include "../error.hpp"
 #include "hybrid_system.hpp"
 #include "jacobian.hpp"
 #include "stop_conditions.hpp"
 
 namespace frictionsim {
 
-/// Which integrator drives the hybrid event loop.
+/// Which integrator runs the model: the ODE methods drive the hybrid event loop of an event-driven system (the lab
+/// rigs, StringRig); the time-stepping methods step a time-stepping model (TorsionalString, solve/time_stepping.hpp).
 enum class Method {
-    automatic,       ///< the system's choice: cvode_bdf if it declares `stiff = true`, else dormand_prince
+    automatic,       ///< the model's choice: moreau_jean for a time-stepping model; for an event-driven system
+                     ///< cvode_bdf if it declares `stiff = true`, else dormand_prince
     dormand_prince,  ///< header-only explicit RK5(4) with dense output: accuracy-limited, non-stiff rigs
     cvode_bdf,       ///< SUNDIALS CVODE, BDF + Newton with dense direct solver: stiff contact laws
     cvode_adams,     ///< SUNDIALS CVODE, Adams-Moulton + fixed point: smooth, non-stiff
     rosenbrock,      ///< header-only RODAS4 on Eigen (solve/rosenbrock.hpp): stiff, dense or banded LU; needs
                      ///< FRICTIONSIM_EIGEN (the CMake target frictionsim::eigen defines it)
+    moreau_jean,     ///< time-stepping models only: Moreau-Jean's theta-method on the one-step contact inclusion,
+                     ///< solved exactly (eigen/moreau_jean.hpp); SolverOptions::step and theta. Contacts captured (a
+                     ///< switch lands on a step end); what the model locates exactly (its bit treatment) is located.
+    explicit_projection,  ///< time-stepping models only: symplectic Euler with the predicted contact force clipped
+                          ///< to its bound inside projection_band (the field codes' scheme); step below the element's
+                          ///< wave transit time
 };
+
+/// Does `m` step a time-stepping model (rather than integrate an event-driven system)?
+constexpr bool is_time_stepping_method(Method m) {
+    return m == Method::moreau_jean || m == Method::explicit_projection;
+}
 
 inline const char* method_name(Method m) {
     switch (m) {
@@ -33,6 +48,8 @@ inline const char* method_name(Method m) {
         case Method::cvode_bdf: return "cvode_bdf";
         case Method::cvode_adams: return "cvode_adams";
         case Method::rosenbrock: return "rosenbrock";
+        case Method::moreau_jean: return "moreau_jean";
+        case Method::explicit_projection: return "explicit_projection";
     }
     return "unknown";
 }
@@ -61,9 +78,19 @@ constexpr LinearSolver resolve_linear_solver(LinearSolver requested) {
     return declares_bandwidths_v<System> ? LinearSolver::band : LinearSolver::dense;
 }
 
+/// Does a model declare `static constexpr bool time_stepping = true`? simulate() then steps it with a time-stepping
+/// method (solve/time_stepping.hpp) instead of the hybrid event loop: a compile-time dispatch.
+template <class T, class = void>
+struct declares_time_stepping : std::false_type {};
+template <class T>
+struct declares_time_stepping<T, std::void_t<decltype(T::time_stepping)>> : std::bool_constant<T::time_stepping> {};
+template <class T>
+constexpr bool is_time_stepping_model_v = declares_time_stepping<T>::value;
+
 template <class System>
 constexpr Method resolve_method(Method requested) {
     if (requested != Method::automatic) return requested;
+    if constexpr (is_time_stepping_model_v<System>) return Method::moreau_jean;
     return declares_stiff<System>::value ? Method::cvode_bdf : Method::dormand_prince;
 }
 
@@ -99,6 +126,16 @@ struct SolverOptions {
     /// The Python bindings check for Ctrl-C here. Empty: never polled.
     std::function<bool()> interrupt;
 
+    // The time-stepping methods (moreau_jean, explicit_projection); the ODE methods ignore these.
+    /// h [s], the fixed step: positive, not larger than the gap between output_times, and t_end - t_start a whole
+    /// number of steps.
+    double step = 1e-3;
+    /// moreau_jean's theta in [0.5, 1]: 0.5 keeps the linear part's energy exactly, 1 damps it (both A-stable).
+    double theta = 0.5;
+    /// explicit_projection: |v| [m/s or rad/s] below which the clipped predicted contact force acts (A&S's stick
+    /// band, 1.5 rad/s); 0: only at rest.
+    double projection_band = 0.0;
+
     /// The loosest rtol accepted: past it a 5(4) or BDF error estimate no longer bounds the error (a cycle-mean
     /// friction force of the axial rig came out with the wrong sign at rtol 0.2).
     static constexpr double max_rtol = 0.1;
@@ -111,9 +148,15 @@ struct SolverOptions {
     /// underflow (at 1e-100 every rig failed so), which is no fault of the model.
     static constexpr double min_atol = 1e-20;
 
-    /// Throws InvalidParameter naming the offending option. `state_size` sizes atol_per_state.
+    /// The ODE methods' checks. Throws InvalidParameter naming the offending option. `state_size` sizes
+    /// atol_per_state.
     void validate(std::size_t state_size) const {
         constexpr const char* who = "SolverOptions";
+        if (is_time_stepping_method(method))
+            throw InvalidParameter("method", std::string(who) + ": method must be an ODE method for an event-driven "
+                                             "system (got " + method_name(method) + ", which steps time-stepping "
+                                             "models such as TorsionalString)");
+        validate_budgets();
         if (!(rtol >= min_rtol && rtol <= max_rtol))
             detail::reject(who, "rtol",
                            "in [1e-14, 0.1] (below, under double precision; looser, the integrators' error estimates "
@@ -132,12 +175,38 @@ struct SolverOptions {
                                static_cast<double>(atol_per_state.size()));
             for (double a : atol_per_state) check_atol("atol_per_state", a);
         }
-        if (max_steps <= 0) detail::reject(who, "max_steps", "positive", static_cast<double>(max_steps));
         if (!(max_step > 0.0)) detail::reject(who, "max_step", "positive", max_step);
         detail::require_non_negative(who, "initial_step", initial_step);
         if (max_events_in_window <= 0 || max_events_in_window > 1'000'000)
             detail::reject(who, "max_events_in_window", "in [1, 1e6]", max_events_in_window);
         detail::require_positive(who, "event_window", event_window);
+    }
+
+    /// The time-stepping methods' checks (`resolved`: the method after `automatic`), for a run over
+    /// [t_start, t_end]. Throws InvalidParameter naming the offending option.
+    void validate_time_stepping(Method resolved, double t_start, double t_end) const {
+        constexpr const char* who = "SolverOptions";
+        if (!is_time_stepping_method(resolved))
+            throw InvalidParameter("method", std::string(who) + ": method must be moreau_jean or "
+                                             "explicit_projection for a time-stepping model (got " +
+                                             method_name(resolved) + ", which integrates event-driven systems)");
+        validate_budgets();
+        detail::require_positive(who, "step", step);
+        if (!(theta >= 0.5 && theta <= 1.0)) detail::reject(who, "theta", "in [0.5, 1]", theta);
+        detail::require_non_negative(who, "projection_band", projection_band);
+        for (std::size_t i = 1; i < output_times.size(); ++i)  // a row per step at most: no output is skipped over
+            if (step > (output_times[i] - output_times[i - 1]) * (1.0 + 1e-9))
+                detail::reject(who, "step", "not larger than the output interval (the gap between output_times)",
+                               step);
+        const double steps = (t_end - t_start) / step;  // a captured step cannot be shortened to end at t_end
+        if (std::isfinite(steps) && std::abs(steps - std::round(steps)) > 1e-6)
+            detail::reject(who, "step", "a whole fraction of t_end - t_start (the run ends on the step grid)", step);
+    }
+
+    /// The budgets and outputs every method reads.
+    void validate_budgets() const {
+        constexpr const char* who = "SolverOptions";
+        if (max_steps <= 0) detail::reject(who, "max_steps", "positive", static_cast<double>(max_steps));
         if (!(timeout > 0.0)) detail::reject(who, "timeout", "positive (seconds of wall-clock time; inf: none)", timeout);
         if (max_output_rows == 0) detail::reject(who, "max_output_rows", "positive", 0.0);
         for (std::size_t i = 0; i < output_times.size(); ++i) {

@@ -17,36 +17,37 @@
 
 namespace frictionsim {
 
-template <class System>
-class Recorder {
+/// The rows and the event log of a Result, checked and capped: what every run loop records into.
+class RowRecorder {
 public:
-    explicit Recorder(const System& system, std::size_t expected_rows = 0,
-                      std::size_t max_rows = SolverOptions{}.max_output_rows)
-        : sys_(system), n_(state_size_of(system)), max_rows_(max_rows), result_(std::make_shared<Result>()) {
-        for (const auto& n : system.state_names()) result_->state_names.emplace_back(n);
+    template <class Names>
+    RowRecorder(const Names& state_names, std::size_t expected_rows, std::size_t max_rows)
+        : max_rows_(max_rows), result_(std::make_shared<Result>()) {
+        for (const auto& n : state_names) result_->state_names.emplace_back(n);
+        n_ = result_->state_names.size();
         result_->t.reserve(expected_rows);
         result_->states.reserve(expected_rows * n_);
         result_->friction_force.reserve(expected_rows);
         result_->mode.reserve(expected_rows);
     }
 
-    void output(double t, const double* x, const system_mode_t<System>& mode) {
+    /// One row: time, states x[state_count], friction force, mode code. Non-finite values stop the run.
+    void row(double t, const double* x, double force, int mode) {
         if (result_->t.size() >= max_rows_) over_budget(t, "rows");
-        const double force = sys_.friction_force(t, x, mode);
         bool finite = std::isfinite(force);
         for (std::size_t i = 0; i < n_; ++i) finite = finite && std::isfinite(x[i]);
         if (!finite) non_finite(t, x, force);
         result_->t.push_back(t);
         result_->states.insert(result_->states.end(), x, x + n_);
         result_->friction_force.push_back(force);
-        result_->mode.push_back(mode_code(sys_, mode));
+        result_->mode.push_back(mode);
     }
-    void step(double t, const double* x, const system_mode_t<System>& mode) { output(t, x, mode); }
-    void event(const Event& e, double t, const double*) {
+    void event(const Event& e, double t) {
         std::vector<Event>& log = e.stop_condition >= 0 ? result_->stop_events : result_->events;
         if (log.size() >= max_rows_) over_budget(t, "events");
         log.push_back(e);
     }
+    const Result& result() const { return *result_; }
 
     /// Marks how the run ended and hands the result over (shared, so an exception can carry it too).
     std::shared_ptr<Result> finish(bool completed, double t_reached, const SolverStats& stats = {},
@@ -88,10 +89,33 @@ private:
         throw SimulationError(msg.str(), result_->t.empty() ? t : result_->t.back());
     }
 
-    const System& sys_;
-    std::size_t n_;
+    std::size_t n_ = 0;
     std::size_t max_rows_;
     std::shared_ptr<Result> result_;
+};
+
+/// The hybrid loop's observer: a RowRecorder fed with the system's friction force and mode code.
+template <class System>
+class Recorder {
+public:
+    explicit Recorder(const System& system, std::size_t expected_rows = 0,
+                      std::size_t max_rows = SolverOptions{}.max_output_rows)
+        : sys_(system), rows_(system.state_names(), expected_rows, max_rows) {}
+
+    void output(double t, const double* x, const system_mode_t<System>& mode) {
+        rows_.row(t, x, sys_.friction_force(t, x, mode), mode_code(sys_, mode));
+    }
+    void step(double t, const double* x, const system_mode_t<System>& mode) { output(t, x, mode); }
+    void event(const Event& e, double t, const double*) { rows_.event(e, t); }
+
+    std::shared_ptr<Result> finish(bool completed, double t_reached, const SolverStats& stats = {},
+                                   bool stopped = false) {
+        return rows_.finish(completed, t_reached, stats, stopped);
+    }
+
+private:
+    const System& sys_;
+    RowRecorder rows_;
 };
 
 }  // namespace frictionsim

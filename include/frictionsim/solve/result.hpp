@@ -32,8 +32,13 @@ struct SolverStats {
     long jacobian_evaluations = 0;
     long guard_evaluations = 0;
     long error_test_failures = 0;
-    long restarts = 0;
-    long events = 0;
+    long restarts = 0;  ///< the integrator restarted (after a switch); time-stepping: stepper instances rebuilt
+    long events = 0;    ///< entries of Result::events
+    // The time-stepping methods (0 for the ODE methods):
+    long contact_switches = 0;  ///< captured contacts that changed mode, summed over steps
+    long factorisations = 0;    ///< LDL^T factorisations (or updates) of the step's operator with the stuck set
+    long linear_solves = 0;     ///< solves with it: one per active-set iteration (the one-step LCP)
+    long location_trials = 0;   ///< trial steps that located the exactly treated switches
 };
 
 struct Result {

@@ -50,7 +50,7 @@ public:
             require_finite(who, "stop_conditions.level", c.level);
             std::size_t column = npos;
             if (!c.state.empty()) {
-                for (std::size_t i = 0; i < state_size_of(sys); ++i)
+                for (std::size_t i = 0; i < static_cast<std::size_t>(names.size()); ++i)
                     if (c.state == names[i]) column = i;
                 if (column == npos)
                     throw InvalidParameter("stop_conditions.state", "SolverOptions: stop_conditions.state must name "

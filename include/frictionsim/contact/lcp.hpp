@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
-#include "../friction/law.hpp"
+#include "mode.hpp"
 
 namespace frictionsim {
 

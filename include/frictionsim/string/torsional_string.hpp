@@ -28,6 +28,8 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -36,9 +38,10 @@
 
 #include "../detail/constants.hpp"
 #include "../parameters.hpp"
-#include "../solve/moreau_jean.hpp"
-#include "../solve/moreau_jean_events.hpp"
-#include "bit_rock.hpp"
+#include "../eigen/moreau_jean.hpp"
+#include "../eigen/moreau_jean_events.hpp"
+#include "../solve/time_stepping.hpp"
+#include "../bits/bit_rock.hpp"
 #include "sections.hpp"
 
 namespace frictionsim {
@@ -332,123 +335,45 @@ public:
         return sys;
     }
 
-    /// From rest, untwisted, all contacts stuck.
-    TorsionalStringRun simulate(const TorsionalStringRunOptions& run) const {
-        constexpr const char* who = "TorsionalStringRunOptions";
-        detail::require_positive(who, "t_end", run.t_end);
-        detail::require_positive(who, "step", run.step);
-        detail::require_non_negative(who, "slow_speed", run.slow_speed);
-        detail::require_positive(who, "switch_tolerance", run.switch_tolerance);
-        const long per_output = steps_per(who, "output_interval", run.output_interval, run.step);
-        const bool sampled = p_.control_period > 0.0;
-        const long per_control =
-            sampled ? steps_per("TorsionalString", "control_period", p_.control_period, run.step) : 0;
-        if (bit_on_bottom() && run.bit_treatment == BitTreatment::exact) {
-            if (sampled)  // the hold's sampling instants would be switches of their own
-                detail::reject("TorsionalString", "control_period", "0 (a continuous PI) with the exact bit",
-                               p_.control_period);
-            return simulate_exact_bit(run, per_output);
-        }
+    // simulate(model, t_end, options) (simulate.hpp, solve/time_stepping.hpp): a time-stepping model, run from rest,
+    // untwisted, all contacts stuck, by Method::moreau_jean (or explicit_projection). Columns: bit_speed,
+    // top_drive_speed [rad/s], motor_torque [N m], stuck_fraction [-]; friction_force: node N's contact torque (the
+    // bit's with its wall's) of the step; mode: the bit's, 0 stick, +1 / -1 slip forward / backward.
+    static constexpr bool time_stepping = true;
+    class Stepper;
 
-        MoreauJeanOptions o;
-        o.step = run.step;
-        o.theta = run.theta;
-        o.treatment = run.treatment;
-        o.projection_band = run.projection_band;
-        o.record_events = false;  // hundreds of contacts: the run keeps the count (statistics), not the log
-        o.interrupt = run.interrupt;
-        double held = 0.0, setpoint = 0.0, integral = 0.0;
-        const Eigen::Index n = static_cast<Eigen::Index>(nodes());
-        MoreauJean mj(system(sampled ? &held : nullptr), o, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
-        const std::size_t bit_contact = mj.system().contacts.size() - 1;  // on bottom: node N's, the last
-        const std::size_t bit_contact_dof = nodes() - 1;
-        Eigen::VectorXd scratch;
-
-        TorsionalStringRun out;
-        const long total = std::lround(run.t_end / run.step);
-        for (long k = 0;; ++k) {
-            const double t = mj.time();
-            const Eigen::VectorXd& v = mj.velocities();
-            if (sampled && k % per_control == 0) {  // A&S MAIN.m: the set-point filter, then tau_m, then int e
-                const double dt = p_.control_period, T = p_.setpoint_time_constant;
-                setpoint = T > 0.0 ? setpoint + (p_.speed_setpoint - setpoint) * dt / T : p_.speed_setpoint;
-                held = p_.proportional_gain * (setpoint - v(0)) + p_.integral_gain * integral;
-                integral += dt * (setpoint - v(0));
-            }
-            if (k % per_output == 0) {
-                out.time.push_back(t);
-                out.bit_speed.push_back(v(n - 1));
-                out.top_drive_speed.push_back(v(0));
-                out.motor_torque.push_back(sampled ? held
-                                                   : p_.proportional_gain * (setpoint_speed(t) - v(0)) +
-                                                         p_.integral_gain * (setpoint_angle(t) - mj.positions()(0)));
-                Eigen::Index stuck = 0;
-                for (Eigen::Index i = 0; i < n; ++i)
-                    stuck += (run.slow_speed > 0.0 ? std::abs(v(i)) < run.slow_speed : v(i) == 0.0) ? 1 : 0;
-                out.stuck_fraction.push_back(static_cast<double>(stuck) / static_cast<double>(n));
-            }
-            if (k == total) break;
-            if (bit_on_bottom()) {  // the bit's slip level at the step's midpoint speed (LumpedFriction's rule)
-                const double w = v(n - 1);
-                double level = bit_kinetic_torque(w);
-                if (w != 0.0) {
-                    const MechanicalView at(t, mj.positions(), v, mj.contact_forces(), mj.system(), scratch);
-                    const double dir = w > 0.0 ? 1.0 : -1.0;
-                    const double mid = w + 0.5 * run.step * (at.load(bit_contact_dof) - dir * level) /
-                                               mj.system().mass.coeff(n - 1, n - 1);
-                    level = bit_kinetic_torque(std::max(0.0, dir * mid));
-                }
-                mj.set_contact_bounds(bit_contact, bit_static_torque(), level);
-                mj.step();
-                const double after = mj.velocities()(n - 1);
-                if (w != 0.0 && after == 0.0) out.bit_stick_times.push_back(mj.time());
-                if (w == 0.0 && after != 0.0) out.bit_release_times.push_back(mj.time() - run.step);
-            } else {
-                mj.step();
-            }
-        }
-        out.statistics = mj.statistics();
-        return out;
+    /// How a run treats the on-bottom bit: captured with the walls (its stick / release seen at step ends), or
+    /// exact, the mixed treatment (its switches located within `switch_tolerance` s, the walls still captured).
+    /// Off bottom both are the captured string.
+    TorsionalString& set_bit_treatment(BitTreatment treatment, double switch_tolerance = 1e-10) {
+        detail::require_positive("TorsionalString", "switch_tolerance", switch_tolerance);
+        treatment_ = treatment;
+        switch_tolerance_ = switch_tolerance;
+        return *this;
     }
+    BitTreatment bit_treatment() const { return treatment_; }
+    double switch_tolerance() const { return switch_tolerance_; }
+    /// What the stuck_fraction column counts: nodes with |omega| < slow_speed (A&S's band: 1.5 rad/s), or with
+    /// slow_speed 0 the nodes at rest exactly (omega == 0).
+    TorsionalString& set_slow_speed(double slow_speed) {
+        slow_speed_ = detail::require_non_negative("TorsionalString", "slow_speed", slow_speed);
+        return *this;
+    }
+    double slow_speed() const { return slow_speed_; }
+
+    std::vector<std::string> state_names() const {
+        return {"bit_speed", "top_drive_speed", "motor_torque", "stuck_fraction"};
+    }
+    const char* mode_name(int mode) const { return mode == 0 ? "stick" : mode > 0 ? "slip_positive" : "slip_negative"; }
+    /// The stepper of solve/time_stepping.hpp's loop (refuses a sampled PI with the exact bit, naming
+    /// control_period, and a control period that is not a whole number of steps).
+    Stepper make_stepper(const TimeStepping& setup) const;
+
+    /// The earlier run interface, kept: simulate(*this, t_end, options) on the output grid run.output_interval (the
+    /// rows at k * output_interval), its columns as vectors, the bit's stick / release times from the events.
+    TorsionalStringRun simulate(const TorsionalStringRunOptions& run) const;
 
 private:
-    /// The bit as the lumped element of MoreauJeanEvents, the walls captured; outputs interpolated between steps.
-    TorsionalStringRun simulate_exact_bit(const TorsionalStringRunOptions& run, long per_output) const {
-        MoreauJeanEventsOptions o;
-        o.steps.step = run.step;
-        o.steps.theta = run.theta;
-        o.steps.treatment = run.treatment;
-        o.steps.projection_band = run.projection_band;
-        o.steps.interrupt = run.interrupt;
-        o.time_tolerance = run.switch_tolerance;
-        const long total = std::lround(run.t_end / run.step);
-        for (long k = 0; k <= total; k += per_output) o.output_times.push_back(static_cast<double>(k) * run.step);
-        const Eigen::Index n = static_cast<Eigen::Index>(nodes());
-        MoreauJeanEvents<LumpedFriction> driver(system(nullptr, false), {bit_element()}, std::move(o),
-                                                Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
-        TorsionalStringRun out;
-        driver.run(static_cast<double>(total) * run.step, [&](double t, const Eigen::VectorXd& q,
-                                                              const Eigen::VectorXd& v) {
-            out.time.push_back(t);
-            out.bit_speed.push_back(v(n - 1));
-            out.top_drive_speed.push_back(v(0));
-            out.motor_torque.push_back(p_.proportional_gain * (setpoint_speed(t) - v(0)) +
-                                       p_.integral_gain * (setpoint_angle(t) - q(0)));
-            Eigen::Index stuck = 0;
-            for (Eigen::Index i = 0; i < n; ++i)
-                stuck += (run.slow_speed > 0.0 ? std::abs(v(i)) < run.slow_speed : v(i) == 0.0) ? 1 : 0;
-            out.stuck_fraction.push_back(static_cast<double>(stuck) / static_cast<double>(n));
-        });
-        for (const LumpedEvent& e : driver.events()) {
-            if (e.mode_after == 0) out.bit_stick_times.push_back(e.time);
-            if (e.mode_before == 0) out.bit_release_times.push_back(e.time);
-        }
-        const auto stats = driver.statistics();
-        out.statistics = stats.steps;
-        out.bit_location_trials = stats.trial_steps;
-        return out;
-    }
-
     static long steps_per(const char* who, const char* name, double interval, double step) {
         detail::require_positive(who, name, interval);
         const double ratio = interval / step;
@@ -502,7 +427,238 @@ private:
     LumpedString lumped_;
     std::vector<double> static_torque_;
     NavarroLopezBit bit_;
+    BitTreatment treatment_ = BitTreatment::captured;
+    double switch_tolerance_ = 1e-10;
+    double slow_speed_ = 0.0;
 };
+
+/// One run of a TorsionalString, step by step (the Stepper of solve/time_stepping.hpp): Moreau-Jean over the whole
+/// string with the bit captured (its slip level at each step's midpoint speed, LumpedFriction's rule), or
+/// MoreauJeanEvents with the bit as its lumped element (exact); a sampled PI updated on its own grid.
+class TorsionalString::Stepper {
+public:
+    Stepper(const TorsionalString& model, const TimeStepping& setup)
+        : ts_(model), h_(setup.step), n_(static_cast<Eigen::Index>(model.nodes())), control_(new Control{}) {
+        const TorsionalStringParams& p = model.params();
+        sampled_ = p.control_period > 0.0;
+        per_control_ = sampled_ ? steps_per("TorsionalString", "control_period", p.control_period, h_) : 0;
+        exact_ = model.bit_on_bottom() && model.bit_treatment() == BitTreatment::exact;
+        const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
+        MoreauJeanOptions o;
+        o.step = setup.step;
+        o.theta = setup.theta;
+        o.treatment = setup.method == Method::explicit_projection ? ContactTreatment::projection
+                                                                  : ContactTreatment::inclusion;
+        o.projection_band = setup.projection_band;
+        o.record_events = false;  // hundreds of contacts: the run keeps the count (statistics), not the log
+        if (exact_) {
+            if (sampled_)  // the hold's sampling instants would be switches of their own
+                detail::reject("TorsionalString", "control_period", "0 (a continuous PI) with the exact bit",
+                               p.control_period);
+            MoreauJeanEventsOptions e;
+            e.steps = std::move(o);
+            e.time_tolerance = model.switch_tolerance();
+            events_driver_ = std::make_unique<MoreauJeanEvents<LumpedFriction>>(
+                model.system(nullptr, false), std::vector<LumpedFriction>{model.bit_element()}, std::move(e), zero,
+                zero, setup.t_start);
+            mode_ = events_driver_->modes()[0];
+        } else {
+            mj_ = std::make_unique<MoreauJean>(model.system(sampled_ ? &control_->held : nullptr), std::move(o), zero,
+                                               zero, setup.t_start);
+            if (sampled_) control();
+        }
+        start_ = Start{setup.t_start, zero, zero, control_->held};
+    }
+
+    double time() const { return exact_ ? events_driver_->time() : mj_->time(); }
+    /// The captured run steps on the grid t_start + k h to the point nearest t_end; the exact one shortens its last
+    /// step to end on t_end.
+    bool finished(double t_end) const {
+        return exact_ ? t_end - time() <= 1e-9 * h_ : time() + 0.5 * h_ >= t_end;
+    }
+
+    void step(double t_end, bool keep_start) {
+        events_.clear();
+        if (exact_) {
+            const double left = t_end - time();
+            const std::size_t seen = events_driver_->events().size();
+            events_driver_->step(left < h_ * (1.0 + 1e-9) ? left : h_);
+            const std::vector<LumpedEvent>& log = events_driver_->events();
+            for (std::size_t k = seen; k < log.size(); ++k) add_event(log[k].time, log[k].mode_before, log[k].mode_after);
+            mode_start_ = mode_;
+            mode_ = events_driver_->modes()[0];
+            return;
+        }
+        kept_ = keep_start;
+        if (keep_start) start_ = Start{mj_->time(), mj_->positions(), mj_->velocities(), control_->held};
+        MoreauJean& mj = *mj_;
+        const Eigen::Index last = n_ - 1;
+        const double w = mj.velocities()(last);
+        if (ts_.bit_on_bottom()) {  // the bit's slip level at the step's midpoint speed (LumpedFriction's rule)
+            double level = ts_.bit_kinetic_torque(w);
+            if (w != 0.0) {
+                const MechanicalView at(mj.time(), mj.positions(), mj.velocities(), mj.contact_forces(), mj.system(),
+                                        scratch_);
+                const double dir = w > 0.0 ? 1.0 : -1.0;
+                const double mid = w + 0.5 * h_ * (at.load(static_cast<std::size_t>(last)) - dir * level) /
+                                           mj.system().mass.coeff(last, last);
+                level = ts_.bit_kinetic_torque(std::max(0.0, dir * mid));
+            }
+            mj.set_contact_bounds(mj.system().contacts.size() - 1, ts_.bit_static_torque(), level);
+        }
+        mj.step();
+        ++steps_;
+        if (sampled_ && steps_ % per_control_ == 0) control();
+        const double after = mj.velocities()(last);
+        const int before_mode = sign(w), after_mode = sign(after);
+        if (before_mode != after_mode)  // a release counts from the step's start (the bit broke loose within it)
+            add_event(before_mode == 0 ? mj.time() - h_ : mj.time(), before_mode, after_mode);
+    }
+
+    /// Columns and mode at t in the last step: its end, or (when kept) the state linear between its ends.
+    int row(double t, double* out) const {
+        const Eigen::VectorXd *q = nullptr, *v = nullptr;
+        double t0 = 0.0, t1 = time(), held = control_->held;
+        if (exact_) {
+            q = &events_driver_->positions();
+            v = &events_driver_->velocities();
+            t0 = events_driver_->previous_time();
+        } else {
+            q = &mj_->positions();
+            v = &mj_->velocities();
+            t0 = start_.time;
+        }
+        const double a = (exact_ || kept_) && t1 > t0 ? std::clamp((t - t0) / (t1 - t0), 0.0, 1.0) : 1.0;
+        if (a < 1.0) {  // inside the step
+            const Eigen::VectorXd& q0 = exact_ ? events_driver_->previous_positions() : start_.q;
+            const Eigen::VectorXd& v0 = exact_ ? events_driver_->previous_velocities() : start_.v;
+            interpolated_q_ = (1.0 - a) * q0 + a * *q;
+            interpolated_v_ = (1.0 - a) * v0 + a * *v;
+            q = &interpolated_q_;
+            v = &interpolated_v_;
+            held = start_.held;
+        }
+        const TorsionalStringParams& p = ts_.params();
+        out[0] = (*v)(n_ - 1);
+        out[1] = (*v)(0);
+        out[2] = sampled_ ? held
+                          : p.proportional_gain * (ts_.setpoint_speed(t) - (*v)(0)) +
+                                p.integral_gain * (ts_.setpoint_angle(t) - (*q)(0));
+        Eigen::Index stuck = 0;
+        const double slow = ts_.slow_speed();
+        for (Eigen::Index i = 0; i < n_; ++i) stuck += (slow > 0.0 ? std::abs((*v)(i)) < slow : (*v)(i) == 0.0) ? 1 : 0;
+        out[3] = static_cast<double>(stuck) / static_cast<double>(n_);
+        if (exact_) return a < 1.0 ? mode_start_ : mode_;
+        return sign(out[0]);
+    }
+
+    double friction_force() const {
+        return (exact_ ? events_driver_->contact_forces() : mj_->contact_forces())(n_ - 1);
+    }
+    const std::vector<Event>& events() const { return events_; }
+    void add_stats(SolverStats& stats) const {
+        MoreauJean::Statistics s;
+        if (exact_) {
+            const auto e = events_driver_->statistics();
+            s = e.steps;
+            stats.location_trials = e.trial_steps;
+            stats.restarts = e.restarts;
+        } else {
+            s = mj_->statistics();
+        }
+        stats.steps = s.steps;
+        stats.factorisations = s.factorisations;
+        stats.linear_solves = s.solves;
+        stats.contact_switches = s.contact_switches;
+    }
+
+private:
+    /// The sampled PI's state: its output is held between samples (the MoreauJean force reads `held`).
+    struct Control {
+        double held = 0.0, setpoint = 0.0, integral = 0.0;
+    };
+    struct Start {
+        double time = 0.0;
+        Eigen::VectorXd q, v;
+        double held = 0.0;
+    };
+
+    static int sign(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
+
+    /// A&S MAIN.m at a sampling instant: the set-point filter, then tau_m, then int e.
+    void control() {
+        const TorsionalStringParams& p = ts_.params();
+        const double dt = p.control_period, T = p.setpoint_time_constant, w = mj_->velocities()(0);
+        Control& c = *control_;
+        c.setpoint = T > 0.0 ? c.setpoint + (p.speed_setpoint - c.setpoint) * dt / T : p.speed_setpoint;
+        c.held = p.proportional_gain * (c.setpoint - w) + p.integral_gain * c.integral;
+        c.integral += dt * (c.setpoint - w);
+    }
+
+    void add_event(double t, int before, int after) {
+        Event e;
+        e.time = t;
+        e.switching_function = 0;
+        e.name = "bit";
+        e.mode_before = before;
+        e.mode_after = after;
+        e.mode_before_name = ts_.mode_name(before);
+        e.mode_after_name = ts_.mode_name(after);
+        events_.push_back(std::move(e));
+    }
+
+    const TorsionalString& ts_;
+    double h_;
+    Eigen::Index n_;
+    bool sampled_ = false, exact_ = false, kept_ = false;
+    long per_control_ = 0, steps_ = 0;
+    std::unique_ptr<Control> control_;  // a stable address for the force closure
+    std::unique_ptr<MoreauJean> mj_;
+    std::unique_ptr<MoreauJeanEvents<LumpedFriction>> events_driver_;
+    Start start_;
+    int mode_ = 0, mode_start_ = 0;
+    std::vector<Event> events_;
+    mutable Eigen::VectorXd scratch_, interpolated_q_, interpolated_v_;
+};
+
+inline TorsionalString::Stepper TorsionalString::make_stepper(const TimeStepping& setup) const {
+    return Stepper(*this, setup);
+}
+
+inline TorsionalStringRun TorsionalString::simulate(const TorsionalStringRunOptions& run) const {
+    constexpr const char* who = "TorsionalStringRunOptions";
+    detail::require_positive(who, "t_end", run.t_end);
+    detail::require_positive(who, "step", run.step);
+    const long per_output = steps_per(who, "output_interval", run.output_interval, run.step);
+    TorsionalString model = *this;
+    model.set_slow_speed(run.slow_speed).set_bit_treatment(run.bit_treatment, run.switch_tolerance);
+    SolverOptions o;
+    o.method = run.treatment == ContactTreatment::projection ? Method::explicit_projection : Method::moreau_jean;
+    o.step = run.step;
+    o.theta = run.theta;
+    o.projection_band = run.projection_band;
+    o.interrupt = run.interrupt;
+    const long total = std::lround(run.t_end / run.step);
+    for (long k = 0; k <= total; k += per_output) o.output_times.push_back(static_cast<double>(k) * run.step);
+    const Result r = simulate_time_stepping(model, static_cast<double>(total) * run.step, o);
+    TorsionalStringRun out;
+    out.time = r.t;
+    out.bit_speed = r.column_values("bit_speed");
+    out.top_drive_speed = r.column_values("top_drive_speed");
+    out.motor_torque = r.column_values("motor_torque");
+    out.stuck_fraction = r.column_values("stuck_fraction");
+    if (bit_on_bottom())
+        for (const Event& e : r.events) {
+            if (e.mode_after == 0) out.bit_stick_times.push_back(e.time);
+            if (e.mode_before == 0) out.bit_release_times.push_back(e.time);
+        }
+    out.statistics.steps = r.stats.steps;
+    out.statistics.factorisations = r.stats.factorisations;
+    out.statistics.solves = r.stats.linear_solves;
+    out.statistics.contact_switches = r.stats.contact_switches;
+    out.bit_location_trials = r.stats.location_trials;
+    return out;
+}
 
 /// The collar polar moment of A&S's parameters_WellB.m: its line p.Jc = pi * sum(L pi (OD^4 - ID^4) / 32) / sum(L)
 /// carries an extra factor pi.

@@ -48,10 +48,10 @@
 #include "../parameters.hpp"
 #include "../solve/jacobian.hpp"
 #include "../solve/system_size.hpp"
-#include "bit.hpp"
+#include "../bits/bit.hpp"
 #include "sections.hpp"
 #include "string_rig_params.hpp"
-#include "wall_contact.hpp"
+#include "../contact/wall_contact.hpp"
 
 namespace frictionsim {
 

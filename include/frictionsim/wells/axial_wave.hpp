@@ -42,7 +42,7 @@
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
 #include "../parameters.hpp"
-#include "sections.hpp"
+#include "../string/sections.hpp"
 #include "vibration_friction.hpp"
 
 namespace frictionsim {

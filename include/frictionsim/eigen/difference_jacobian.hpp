@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "banded_lu.hpp"
-#include "jacobian.hpp"
+#include "../solve/jacobian.hpp"
 
 namespace frictionsim {
 

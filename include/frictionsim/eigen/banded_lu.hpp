@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "jacobian.hpp"
+#include "../solve/jacobian.hpp"
 
 namespace frictionsim {
 

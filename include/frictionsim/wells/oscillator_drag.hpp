@@ -33,7 +33,7 @@
 #include "../parameters.hpp"
 #include "axial_wave.hpp"
 #include "oscillator_response.hpp"
-#include "sections.hpp"
+#include "../string/sections.hpp"
 #include "soft_string.hpp"
 #include "survey.hpp"
 #include "vibration_friction.hpp"

@@ -38,13 +38,13 @@
 #include "../error.hpp"
 #include "banded_lu.hpp"
 #include "difference_jacobian.hpp"
-#include "hybrid_system.hpp"
-#include "jacobian.hpp"
-#include "options.hpp"
-#include "result.hpp"
-#include "root_location.hpp"
-#include "step_control.hpp"
-#include "system_size.hpp"
+#include "../solve/hybrid_system.hpp"
+#include "../solve/jacobian.hpp"
+#include "../solve/options.hpp"
+#include "../solve/result.hpp"
+#include "../solve/root_location.hpp"
+#include "../solve/step_control.hpp"
+#include "../solve/system_size.hpp"
 
 namespace frictionsim {
 

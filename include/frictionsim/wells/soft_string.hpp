@@ -58,7 +58,7 @@
 #include "../detail/constants.hpp"
 #include "../detail/illinois.hpp"
 #include "../parameters.hpp"
-#include "sections.hpp"
+#include "../string/sections.hpp"
 #include "survey.hpp"
 
 namespace frictionsim {

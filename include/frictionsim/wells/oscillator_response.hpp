@@ -60,9 +60,9 @@
 #include "../solve/dormand_prince.hpp"
 #include "../solve/hybrid_loop.hpp"
 #include "axial_wave.hpp"
-#include "sections.hpp"
+#include "../string/sections.hpp"
 #include "soft_string.hpp"
-#include "string_rig.hpp"
+#include "../string/string_rig.hpp"
 #include "survey.hpp"
 
 namespace frictionsim {

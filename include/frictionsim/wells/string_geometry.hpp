@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
-#include "bit.hpp"
-#include "sections.hpp"
+#include "../bits/bit.hpp"
+#include "../string/sections.hpp"
 #include "soft_string.hpp"
-#include "string_rig_params.hpp"
+#include "../string/string_rig_params.hpp"
 #include "survey.hpp"
 
 namespace frictionsim {

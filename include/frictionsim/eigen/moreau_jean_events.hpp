@@ -255,6 +255,9 @@ public:
         if (v_.size() != n) detail::reject(who, "v0", "of size mass.rows() (size given)", double(v_.size()));
         detail::require_finite(who, "t0", t_);
         reaction_ = Eigen::VectorXd::Zero(n);
+        q_prev_ = q_;
+        v_prev_ = v_;
+        t_prev_ = t_;
         modes_.resize(elements_.size());
         const MechanicalView at = view(t_, q_, v_, reaction_);
         for (std::size_t e = 0; e < elements_.size(); ++e) modes_[e] = elements_[e].initial_mode(at);
@@ -264,6 +267,11 @@ public:
     double time() const { return t_; }
     const Eigen::VectorXd& positions() const { return q_; }
     const Eigen::VectorXd& velocities() const { return v_; }
+    /// The state before the last accepted step (at the start: the initial state): with time() and the state, what
+    /// outputs inside the step are interpolated from.
+    double previous_time() const { return t_prev_; }
+    const Eigen::VectorXd& previous_positions() const { return q_prev_; }
+    const Eigen::VectorXd& previous_velocities() const { return v_prev_; }
     /// Contact forces of the last accepted step, per dof (the lumped elements' contacts included).
     const Eigen::VectorXd& contact_forces() const { return reaction_; }
     const std::vector<int>& modes() const { return modes_; }
@@ -445,7 +453,7 @@ private:
                       const Observer& observer) {
         q_prev_ = q_;
         v_prev_ = v_;
-        const double t_prev = t_;
+        const double t_prev = t_prev_ = t_;
         q_ = q;
         v_ = v;
         reaction_ = r;
@@ -471,7 +479,7 @@ private:
     std::vector<Element> elements_;
     MoreauJeanEventsOptions opt_;
     Eigen::VectorXd q_, v_, q_prev_, v_prev_, reaction_;
-    double t_;
+    double t_, t_prev_ = 0.0;
     std::vector<int> modes_;
     std::vector<double> g_start_, g_end_;
     std::vector<LumpedEvent> events_;

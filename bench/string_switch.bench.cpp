@@ -1,0 +1,93 @@
+// The event-driven string's cost per located switch against the element count (issue 22, item 3): a switch of one
+// wall contact should cost what that contact touches, not the whole string. One run per (integrator, N), N = 20 ..
+// 400, each reporting the solver's work beside the time:
+//   events            located switches (every wall contact, the bit and the top drive)
+//   steps_per_event   integrator steps per located switch
+//   rhs, guards       right-hand-side and full guard evaluations
+//   ns_per_event      wall time of the run over its switches (noisy here: use instruction counts, below)
+//   bit_angle         the run's answer at t_end, rad
+// Wall time on this shared 2-core machine is noise; instruction counts are not. The figures in the report come
+// from callgrind, counting only the run (not the rig's construction):
+//   valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect='*integrate_hybrid*' \
+//       build/bench/string_switch --benchmark_filter='dormand_prince/200$'
+// and the instructions divided by the `events` counter; the exponent is the slope of log(instructions per event)
+// against log N. Each benchmark runs once (Iterations(1)) so that callgrind counts one run.
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <string>
+
+#include <frictionsim/friction/coulomb.hpp>
+#include <frictionsim/simulate.hpp>
+#include <frictionsim/string/string_rig.hpp>
+
+using namespace frictionsim;
+
+namespace {
+
+/// bench/drillstring.bench.cpp's 3 km string (2800 m of 5" pipe over 200 m of 6.5" collars, 0.5 rad inclination,
+/// Coulomb walls mu 0.2 / 0.3 at every node but the bit's, beta = 2 ms, PI top drive at 3 rad/s, the Navarro-Lopez
+/// bit on bottom at 150 kN), started turning at the set speed so that the walls break free and stick again from
+/// the first second on: every wall contact switches a few times per second, so the switches grow with N.
+using Rig = StringRig<Coulomb, VelocityWeakeningBit>;
+
+Rig switching_string(std::size_t elements) {
+    PipeSection pipe;
+    pipe.length = 2800.0;
+    PipeSection collar;
+    collar.outer_diameter = 0.1651;
+    collar.inner_diameter = 0.0714;
+    collar.length = 200.0;
+    StringRigParams p;
+    p.inclination = 0.5;
+    p.damping_time = 2e-3;
+    p.surface_speed = 3.0;
+    p.initial_speed = 3.0;
+    p.top_drive_inertia = 500.0;
+    p.proportional_gain = 3e3;
+    p.integral_gain = 1e3;
+    StringRigSetup s;
+    s.elements = elements;
+    return Rig(DrillString({pipe, collar}), p, s, Coulomb(0.2, 0.3), VelocityWeakeningBit(NavarroLopezBit(), 1.5e5));
+}
+
+void string_switch(benchmark::State& state, Method method) {
+    const auto n = static_cast<std::size_t>(state.range(0));
+    const Rig rig = switching_string(n);
+    SolverOptions o;
+    o.method = method;
+    o.rtol = 1e-6;
+    o.atol = 1e-8;
+    o.linear_solver = LinearSolver::band;
+    o.max_events_in_window = 1000000;
+    o.event_window = 1e-3;
+    const double t_end = 2.0;
+    for (double t = 0.0; t <= t_end; t += 0.01) o.output_times.push_back(t);
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, t_end, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    const double events = static_cast<double>(r.events.size());
+    state.counters["elements"] = static_cast<double>(n);
+    state.counters["events"] = events;
+    state.counters["steps"] = static_cast<double>(r.stats.steps);
+    state.counters["steps_per_event"] = static_cast<double>(r.stats.steps) / events;
+    state.counters["rhs"] = static_cast<double>(r.stats.rhs_evaluations);
+    state.counters["guards"] = static_cast<double>(r.stats.guard_evaluations);
+    state.counters["ns_per_event"] =
+        benchmark::Counter(events * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["bit_angle"] = r.state(r.rows() - 1, rig.theta(n));
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+    for (long n : {20, 50, 100, 200, 400}) b->Arg(n);
+    b->Iterations(1)->Unit(benchmark::kMillisecond);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(string_switch, dormand_prince, Method::dormand_prince)->Apply(sizes);
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+BENCHMARK_CAPTURE(string_switch, rosenbrock, Method::rosenbrock)->Apply(sizes);
+#endif

@@ -1,0 +1,356 @@
+// The Aarsnes-Shor torsional string for Python (include/frictionsim/string/torsional_string.hpp): fs.TorsionalString,
+// a lumped string whose hundreds of wall contacts are captured by Moreau-Jean time-stepping (no event per switch),
+// the bit on bottom captured with them or its switches located exactly ("mixed"); the closed forms of A&S sec. 4;
+// the Well B preset fs.aarsnes_shor_well_b. Needs Eigen (FRICTIONSIM_EIGEN): without it nothing is registered.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rig_binding.hpp"
+
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+#include <frictionsim/string/torsional_string.hpp>
+#endif
+
+namespace frictionsim::python {
+
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+
+namespace {
+
+constexpr const char* name = "TorsionalString";
+constexpr auto fields = TorsionalStringParams::fields();
+/// More elements than any string needs (a 6 km string at 1 m): a guard against a typo allocating gigabytes.
+constexpr long max_elements = 100000;
+constexpr long default_elements = 200;
+
+/// How the string's contacts are treated: every one captured by the time-stepping, or the bit's stick and slip
+/// located exactly with the walls still captured ("mixed"). Every contact exact is the event-driven fs.StringRig.
+enum class Treatment { captured, mixed };
+
+const char* treatment_name(Treatment t) { return t == Treatment::captured ? "captured" : "mixed"; }
+
+std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
+
+Treatment treatment_from(py::handle value) {
+    const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
+    if (s == "captured") return Treatment::captured;
+    if (s == "mixed") return Treatment::mixed;
+    const std::string hint = s == "exact" ? " (every contact exact, located as events, is fs.StringRig)" : "";
+    throw InvalidParameter("treatment", std::string(name) + ": treatment must be 'captured' or 'mixed' (got " +
+                                            std::string(py::repr(value)) + ")" + hint);
+}
+
+std::vector<double> reals_from(py::handle value, const char* keyword) {
+    if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
+        throw py::type_error(std::string(name) + ": " + keyword + " must be a sequence of numbers (got " +
+                             type_name(value) + ")");
+    std::vector<double> out;
+    for (py::handle x : value) {
+        if (py::isinstance<py::bool_>(x) || py::isinstance<py::str>(x) || !py::hasattr(x, "__float__"))
+            throw py::type_error(std::string(name) + ": " + keyword + " must hold numbers (got " + type_name(x) + ")");
+        out.push_back(x.attr("__float__")().cast<double>());
+    }
+    return out;
+}
+
+/// A survey: (measured_depth, inclination) [m, rad], or anything with those attributes (fs.Survey).
+InclinationSurvey survey_from(py::handle value) {
+    InclinationSurvey s;
+    if (py::hasattr(value, "measured_depth") && py::hasattr(value, "inclination")) {
+        s.measured_depth = reals_from(value.attr("measured_depth"), "survey.measured_depth");
+        s.inclination = reals_from(value.attr("inclination"), "survey.inclination");
+        return s;
+    }
+    if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value) || py::len(value) != 2)
+        throw py::type_error(std::string(name) + ": survey must be (measured_depth, inclination) [m, rad] or an "
+                                                 "fs.Survey (got " + type_name(value) + ")");
+    const py::sequence pair = py::reinterpret_borrow<py::sequence>(value);
+    s.measured_depth = reals_from(pair[0], "survey.measured_depth");
+    s.inclination = reals_from(pair[1], "survey.inclination");
+    return s;
+}
+
+template <class T>
+py::array_t<T> to_array(const std::vector<T>& v) {
+    return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+/// The Python TorsionalString: what it was built from (properties, repr, pickling) and the C++ string.
+struct BoundTorsionalString {
+    DrillString string;
+    TorsionalStringParams params;
+    std::size_t elements;
+    InclinationSurvey survey;                   ///< empty: the straight well of params.inclination
+    std::optional<std::vector<double>> radius;  ///< as given; none: each section's OD / 2
+    std::optional<NavarroLopezBit> bit;         ///< as given; none: the default NavarroLopezBit
+    Treatment treatment;
+    TorsionalString model;
+
+    BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, InclinationSurvey sv,
+                         std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t)
+        : string(std::move(s)), params(p), elements(n), survey(std::move(sv)), radius(std::move(r)), bit(std::move(b)),
+          treatment(t), model(checked(string, survey, treatment, params, elements), params, elements, survey,
+                              radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {}
+
+private:
+    /// What the C++ constructor does not check: a survey that ends above the bit, a treatment without a bit.
+    static const DrillString& checked(const DrillString& s, const InclinationSurvey& survey, Treatment t,
+                                      const TorsionalStringParams& p, std::size_t) {
+        if (!survey.measured_depth.empty() && survey.measured_depth.back() < s.length())
+            detail::reject(name, "survey", "reaching the bit (its last measured depth >= the string's length, " +
+                                               format_double(s.length()) + " m; given)",
+                           survey.measured_depth.back());
+        if (t == Treatment::mixed && !(p.weight_on_bit > 0.0))
+            throw InvalidParameter("treatment", std::string(name) + ": treatment 'mixed' locates the bit's stick "
+                                                "and slip, and this string's bit is off bottom (weight_on_bit = 0): "
+                                                "use 'captured', or put the bit on bottom");
+        return s;
+    }
+};
+
+py::object survey_to_python(const InclinationSurvey& s) {
+    if (s.empty()) return py::none();
+    return py::make_tuple(py::cast(s.measured_depth), py::cast(s.inclination));
+}
+
+/// The keywords outside the table, as the constructor takes them back (pickling, repr).
+py::dict extras_of(const BoundTorsionalString& r) {
+    py::dict d;
+    d["elements"] = r.elements;
+    d["survey"] = survey_to_python(r.survey);
+    d["contact_radius"] = r.radius ? py::cast(*r.radius) : py::object(py::none());
+    d["bit"] = r.bit ? py::cast(*r.bit) : py::object(py::none());
+    d["treatment"] = treatment_name(r.treatment);
+    return d;
+}
+
+BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
+    require_constructed(string);
+    if (!py::isinstance<DrillString>(string))
+        throw py::type_error(std::string(name) + ": string must be a DrillString (got " + type_name(string) + ")");
+    TorsionalStringParams p{};
+    std::size_t used = read_field_keywords(p, kwargs, fields, name);
+    long elements = default_elements;
+    InclinationSurvey survey;
+    std::optional<std::vector<double>> radius;
+    std::optional<NavarroLopezBit> bit;
+    Treatment treatment = Treatment::captured;
+    const auto given = [&](const char* key) {
+        const bool present = kwargs.contains(key) && !kwargs[key].is_none();
+        used += kwargs.contains(key) ? 1 : 0;
+        return present;
+    };
+    if (given("elements")) {
+        const py::handle v = kwargs["elements"];
+        if (py::isinstance<py::bool_>(v) || !py::hasattr(v, "__index__"))
+            throw py::type_error(std::string(name) + ": elements must be a whole number (got " + type_name(v) + ")");
+        elements = v.attr("__index__")().cast<long>();
+    }
+    if (elements < 1 || elements > max_elements)
+        throw InvalidParameter("elements", std::string(name) + ": elements must be in [1, " +
+                                               std::to_string(max_elements) + "] (got " + std::to_string(elements) +
+                                               ")");
+    if (given("survey")) survey = survey_from(kwargs["survey"]);
+    if (given("contact_radius")) radius = reals_from(kwargs["contact_radius"], "contact_radius");
+    if (given("bit")) {
+        const py::handle b = kwargs["bit"];
+        require_constructed(b);
+        if (!py::isinstance<NavarroLopezBit>(b))
+            throw py::type_error(std::string(name) + ": bit must be a NavarroLopezBit or None (got " + type_name(b) +
+                                 ")");
+        bit = b.cast<NavarroLopezBit>();
+    }
+    if (given("treatment")) treatment = treatment_from(kwargs["treatment"]);
+    if (used != kwargs.size())
+        for (auto item : kwargs) {
+            const std::string key = py::str(item.first);
+            bool known = key == "elements" || key == "survey" || key == "contact_radius" || key == "bit" ||
+                         key == "treatment";
+            for (const Field<TorsionalStringParams>& f : fields) known = known || key == f.public_name();
+            if (!known)
+                throw py::type_error(std::string(name) + "() got an unexpected keyword argument '" + key + "'");
+        }
+    return BoundTorsionalString(string.cast<DrillString>(), p, static_cast<std::size_t>(elements), std::move(survey),
+                                std::move(radius), std::move(bit), treatment);
+}
+
+const char* description = R"doc(
+The torsional drill string of Aarsnes & Shor (2018, J. Pet. Sci. Eng. 163, 712-721; "A&S") with hundreds of wall
+contacts, stepped by Moreau-Jean time-stepping: the contacts' stick and slip are captured by each step's inclusion
+(no event per switch), which is what a field-resolution string needs (fs.StringRig locates every switch as an
+event and drowns in them at a thousand contacts).
+
+    string:    N elements of the DrillString (lump(N)); viscous damping k_t J omega per node (A&S eq 3)
+    wall:      at each node a Coulomb contact of static bound int F_c dx over its half elements,
+               F_c(x) = mu sin(inc(x)) g rho A (1 - rho_mud / rho) r_o (A&S eq 6), kinetic f_rat times it; below
+               omega_c a slipping node keeps the static level (A&S eq 4)
+    top drive: I_TD at node 0 under the PI tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10),
+               continuous or sampled every control_period (zero-order hold, as A&S's code)
+    bit:       off bottom (weight_on_bit = 0): the bit torque T_b; on bottom: the velocity-weakening bit (a
+               NavarroLopezBit under weight_on_bit) merged with node N's wall contact
+
+Closed forms of A&S sec. 4 (properties): breakoff_torque (eq 27), minimum_torque (eq 30), top_drive_twist (eq 29
+at x = 0), build_up_time (eq 34), fundamental_period (the continuous string's lowest mode, top held) and
+period_estimate (eq 40). fs.aarsnes_shor_well_b builds A&S's Well B.
+
+Parameters
+----------
+string : DrillString
+elements : int = 200
+    N >= 1: N + 1 nodes.
+survey : (measured_depth, inclination) or Survey, optional
+    Inclination [rad] against measured depth [m], linear in between; it must reach the bit. Default: a straight
+    well of `inclination`.
+contact_radius : sequence of float, optional
+    r_o per section [m]; default each section's OD / 2.
+bit : NavarroLopezBit, optional
+    The on-bottom bit's law (used when weight_on_bit > 0); default NavarroLopezBit().
+treatment : {"captured", "mixed"}
+    "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
+    located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+
+Keywords
+--------
+)doc";
+
+}  // namespace
+
+py::object register_torsional_string(py::module_& m) {
+    py::class_<BoundTorsionalString> cls(m, name, kept(std::string(description) + keywords_doc(fields)));
+    def_field_properties(cls, fields, [](const BoundTorsionalString& r) -> const TorsionalStringParams& {
+        return r.params;
+    });
+    const TorsionalStringParams defaults{};
+    std::string signature = "__init__(self, string: DrillString, *";
+    for (const Field<TorsionalStringParams>& f : fields)
+        signature += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
+    signature += ", elements: int = " + std::to_string(default_elements) +
+                 ", survey: object | None = None, contact_radius: collections.abc.Sequence[float] | None = None, "
+                 "bit: NavarroLopezBit | None = None, treatment: str = 'captured') -> None\n\n"
+                 "The string, then the set-up and the parameters by keyword (see the class docstring).\n";
+    py::options options;
+    options.disable_function_signatures();
+    cls.def(py::init([](py::handle string, const py::kwargs& kwargs) { return make(string, kwargs); }),
+            kept(std::move(signature)), py::arg("string"));
+    options.enable_function_signatures();
+    cls.def_property_readonly("string", [](const BoundTorsionalString& r) { return r.string; }, "The DrillString.")
+        .def_property_readonly("elements", [](const BoundTorsionalString& r) { return r.elements; }, "N.")
+        .def_property_readonly("nodes", [](const BoundTorsionalString& r) { return r.model.nodes(); }, "N + 1.")
+        .def_property_readonly("survey", [](const BoundTorsionalString& r) { return survey_to_python(r.survey); },
+                               "(measured_depth [m], inclination [rad]) as given, or None (a straight well).")
+        .def_property_readonly("contact_radius",
+                               [](const BoundTorsionalString& r) {
+                                   if (r.radius) return to_array(*r.radius);
+                                   std::vector<double> out;
+                                   for (const PipeSection& s : r.string.sections()) out.push_back(s.outer_diameter / 2.0);
+                                   return to_array(out);
+                               },
+                               "r_o of each section [m].")
+        .def_property_readonly("bit", [](const BoundTorsionalString& r) { return r.model.bit_law(); },
+                               "The on-bottom bit's law (NavarroLopezBit).")
+        .def_property_readonly("treatment", [](const BoundTorsionalString& r) { return treatment_name(r.treatment); })
+        .def_property_readonly("bit_on_bottom", [](const BoundTorsionalString& r) { return r.model.bit_on_bottom(); })
+        .def_property_readonly("period", [](const BoundTorsionalString&) { return py::none(); },
+                               "None: the string has no imposed period (its stick-slip period is an outcome).")
+        .def_property_readonly("element_length", [](const BoundTorsionalString& r) { return r.model.lumped().element_length; },
+                               "dx = L / N [m].")
+        .def_property_readonly("node_inertia",
+                               [](const BoundTorsionalString& r) { return to_array(r.model.lumped().node_inertia); },
+                               "The string's inertia at each node [kg m^2] (without I_TD and J_BHA).")
+        .def_property_readonly("static_friction_torque",
+                               [](const BoundTorsionalString& r) { return to_array(r.model.static_friction_torque()); },
+                               "Static bound of each node's wall contact [N m] (they add up to breakoff_torque).")
+        .def_property_readonly("bit_static_torque", [](const BoundTorsionalString& r) { return r.model.bit_static_torque(); },
+                               "Node N's static bound with the bit on bottom [N m]: its wall's plus R_b W mu_sb.")
+        .def("wall_friction_per_length",
+             py::vectorize([](BoundTorsionalString& r, double x) { return r.model.wall_friction_per_length(x); }),
+             py::arg("measured_depth"), "F_c(x) of A&S eq 6 [N m/m] at measured depth x [m] (arrays broadcast).")
+        .def_property_readonly("breakoff_torque", [](const BoundTorsionalString& r) { return r.model.breakoff_torque(); },
+                               "A&S eq 27: int_0^L F_c dx [N m], the torque the top drive must reach to free the bit.")
+        .def_property_readonly("minimum_torque", [](const BoundTorsionalString& r) { return r.model.minimum_torque(); },
+                               "A&S eq 30: breakoff_torque (1 - 2 (1 - f_rat)) [N m], the cycle's minimum motor torque.")
+        .def_property_readonly("top_drive_twist", [](const BoundTorsionalString& r) { return r.model.top_drive_twist(); },
+                               "A&S eq 29 at x = 0: int_0^L tau(x) / (J G)(x) dx [rad], tau(x) = int_x^L F_c: the "
+                               "twist of the string holding the break-off torque profile.")
+        .def_property_readonly("build_up_time", [](const BoundTorsionalString& r) { return r.model.build_up_time(); },
+                               "A&S eq 34: 2 (1 - f_rat) top_drive_twist / omega_SP [s].")
+        .def_property_readonly("fundamental_period",
+                               [](const BoundTorsionalString& r) { return r.model.fundamental_period(); },
+                               "The continuous string's lowest torsional period [s], top held, the bit free with J_BHA.")
+        .def_property_readonly("period_estimate", [](const BoundTorsionalString& r) { return r.model.period_estimate(); },
+                               "A&S eq 40: build_up_time + fundamental_period [s] (an upper estimate of the stick-slip "
+                               "period).")
+        .def("__reduce__", [](py::handle self) {
+            const auto& r = self.cast<const BoundTorsionalString&>();
+            py::dict kwargs = field_keywords(r.params, fields);
+            for (auto item : extras_of(r)) kwargs[item.first] = item.second;
+            return reduce_by_construction(self, py::make_tuple(py::cast(r.string)), kwargs);
+        })
+        .def("__repr__", [](const BoundTorsionalString& r) {
+            std::string out = std::string(name) + "(" + std::string(py::repr(py::cast(r.string)));
+            for (auto item : extras_of(r)) {
+                const std::string key = py::str(item.first);
+                if (item.second.is_none()) continue;
+                if (key == "treatment" && r.treatment == Treatment::captured) continue;
+                out += ", " + key + "=" + std::string(py::repr(item.second));
+            }
+            return out + changed_fields_repr(r.params, fields) + ")";
+        });
+
+    m.def("aarsnes_shor_well_b", [](const std::string& collar, const std::string& wave_speed, double measured_depth,
+                                    const py::kwargs& kwargs) {
+        if (collar != "as_published" && collar != "corrected")
+            throw InvalidParameter("collar", "aarsnes_shor_well_b: collar must be 'as_published' or 'corrected' (got '" +
+                                                 collar + "')");
+        if (wave_speed != "as_code" && wave_speed != "physical")
+            throw InvalidParameter("wave_speed", "aarsnes_shor_well_b: wave_speed must be 'as_code' or 'physical' "
+                                                 "(got '" + wave_speed + "')");
+        // the BHA is 230 m long and the survey ends at 4000 m
+        if (!(measured_depth > 230.0 && measured_depth <= 4000.0))
+            detail::reject("aarsnes_shor_well_b", "measured_depth", "in (230, 4000] m (the BHA's length, the survey's end)",
+                           measured_depth);
+        const WellBCase c = aarsnes_shor_well_b(
+            collar == "as_published" ? CollarPolarMoment::as_published : CollarPolarMoment::corrected,
+            wave_speed == "as_code" ? CollarWaveSpeed::as_code : CollarWaveSpeed::physical, measured_depth);
+        py::dict all;
+        for (const auto& item : field_keywords(c.params, fields)) all[item.first] = item.second;
+        all["elements"] = 1000;
+        all["survey"] = survey_to_python(c.survey);
+        all["contact_radius"] = py::cast(c.contact_radius);
+        for (auto item : kwargs) all[item.first] = item.second;  // the caller's overrides
+        return make(py::cast(c.string), all);
+    },
+          py::arg("collar") = "as_published", py::arg("wave_speed") = "as_code", py::arg("measured_depth") = 2500.0,
+          R"doc(Well B of Aarsnes & Shor (2018) as a TorsionalString (parameters_WellB.m, MAIN.m: mu 0.3, f_rat 0.65,
+40 rpm), at measured_depth [m] (230 < md <= 4000): 5.77" pipe above a 230 m BHA averaged over its four sections,
+G 61 / 67 GPa, rho 7850, I_TD 2900, k_p 38e3, k_i 100e3, the survey 0 / 0 / 60 / 60 deg at 0 / 500 / 1600 /
+4000 m, omega_c 1.5 rad/s, the PI sampled every 0.01 s, the code's damping at its grid; elements 1000 (the
+published grid). Further keywords (elements=, treatment=, any table keyword) override the preset's.
+
+collar : {"as_published", "corrected"}
+    The collar's polar moment: parameters_WellB.m's line carries an extra factor pi ("as_published", what the
+    published results were computed with), or the length-averaged pi (OD^4 - ID^4) / 32 ("corrected").
+wave_speed : {"as_code", "physical"}
+    torsionalWaveStep.m updates the collar with the pipe's wave speed sqrt(G_p / rho) while its torque is J_c G_c
+    times the strain: a collar of density rho G_c / G_p, 67/61 = 1.098 times the steel's ("as_code"), or steel
+    ("physical").
+
+The break-off torque (eq 27) depends on the wave-speed variant only: the collar variants share the collar's
+area, hence its weight, and the polar moment does not enter the wall friction. "physical" gives the paper's
+analytic 19.531 kN m; "as_code" weighs the collar 67/61 times heavier, hence more wall friction: 20.536 kN m.
+)doc");
+    return std::move(cls);
+}
+
+#else
+
+py::object register_torsional_string(py::module_&) { return py::none(); }
+
+#endif
+
+}  // namespace frictionsim::python
