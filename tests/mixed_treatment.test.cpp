@@ -460,3 +460,376 @@ TEST_CASE("mixed treatment: bad input names the parameter; a stopped run keeps i
     CHECK(seen.back() > reached - 0.1 - 1e-9);
     CHECK(d.statistics().lumped_switches == 2);
 }
+
+// ---- One entry point (issue 22 item 1): simulate(TorsionalString, t_end, SolverOptions) ----
+
+namespace {
+
+long whole_steps(double interval, double step) { return std::lround(interval / step); }
+
+/// The run loop TorsionalString::simulate had before simulate() reached the string (frozen here, read from its
+/// public interface), so that the one loop of solve/time_stepping.hpp is checked against it bit for bit.
+TorsionalStringRun legacy_run(const TorsionalString& ts, const TorsionalStringRunOptions& run) {
+    const long per_output = whole_steps(run.output_interval, run.step);
+    const TorsionalStringParams& p = ts.params();
+    const bool sampled = p.control_period > 0.0;
+    const long per_control = sampled ? whole_steps(p.control_period, run.step) : 0;
+    const Eigen::Index n = static_cast<Eigen::Index>(ts.nodes());
+    const long total = std::lround(run.t_end / run.step);
+    TorsionalStringRun out;
+    const auto stuck_fraction = [&](const Eigen::VectorXd& v) {
+        Eigen::Index stuck = 0;
+        for (Eigen::Index i = 0; i < n; ++i)
+            stuck += (run.slow_speed > 0.0 ? std::abs(v(i)) < run.slow_speed : v(i) == 0.0) ? 1 : 0;
+        return static_cast<double>(stuck) / static_cast<double>(n);
+    };
+    if (ts.bit_on_bottom() && run.bit_treatment == BitTreatment::exact) {
+        MoreauJeanEventsOptions o;
+        o.steps.step = run.step;
+        o.steps.theta = run.theta;
+        o.steps.treatment = run.treatment;
+        o.steps.projection_band = run.projection_band;
+        o.time_tolerance = run.switch_tolerance;
+        for (long k = 0; k <= total; k += per_output) o.output_times.push_back(static_cast<double>(k) * run.step);
+        MoreauJeanEvents<LumpedFriction> driver(ts.system(nullptr, false), {ts.bit_element()}, std::move(o),
+                                                Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
+        driver.run(static_cast<double>(total) * run.step,
+                   [&](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+                       out.time.push_back(t);
+                       out.bit_speed.push_back(v(n - 1));
+                       out.top_drive_speed.push_back(v(0));
+                       out.motor_torque.push_back(p.proportional_gain * (ts.setpoint_speed(t) - v(0)) +
+                                                  p.integral_gain * (ts.setpoint_angle(t) - q(0)));
+                       out.stuck_fraction.push_back(stuck_fraction(v));
+                   });
+        for (const LumpedEvent& e : driver.events()) {
+            if (e.mode_after == 0) out.bit_stick_times.push_back(e.time);
+            if (e.mode_before == 0) out.bit_release_times.push_back(e.time);
+        }
+        const auto stats = driver.statistics();
+        out.statistics = stats.steps;
+        out.bit_location_trials = stats.trial_steps;
+        return out;
+    }
+    MoreauJeanOptions o;
+    o.step = run.step;
+    o.theta = run.theta;
+    o.treatment = run.treatment;
+    o.projection_band = run.projection_band;
+    o.record_events = false;
+    double held = 0.0, setpoint = 0.0, integral = 0.0;
+    MoreauJean mj(ts.system(sampled ? &held : nullptr), o, Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n));
+    const std::size_t bit_contact = mj.system().contacts.size() - 1;
+    Eigen::VectorXd scratch;
+    for (long k = 0;; ++k) {
+        const double t = mj.time();
+        const Eigen::VectorXd& v = mj.velocities();
+        if (sampled && k % per_control == 0) {
+            const double dt = p.control_period, T = p.setpoint_time_constant;
+            setpoint = T > 0.0 ? setpoint + (p.speed_setpoint - setpoint) * dt / T : p.speed_setpoint;
+            held = p.proportional_gain * (setpoint - v(0)) + p.integral_gain * integral;
+            integral += dt * (setpoint - v(0));
+        }
+        if (k % per_output == 0) {
+            out.time.push_back(t);
+            out.bit_speed.push_back(v(n - 1));
+            out.top_drive_speed.push_back(v(0));
+            out.motor_torque.push_back(sampled ? held
+                                               : p.proportional_gain * (ts.setpoint_speed(t) - v(0)) +
+                                                     p.integral_gain * (ts.setpoint_angle(t) - mj.positions()(0)));
+            out.stuck_fraction.push_back(stuck_fraction(v));
+        }
+        if (k == total) break;
+        if (ts.bit_on_bottom()) {
+            const double w = v(n - 1);
+            double level = ts.bit_kinetic_torque(w);
+            if (w != 0.0) {
+                const MechanicalView at(t, mj.positions(), v, mj.contact_forces(), mj.system(), scratch);
+                const double dir = w > 0.0 ? 1.0 : -1.0;
+                const double mid = w + 0.5 * run.step * (at.load(ts.nodes() - 1) - dir * level) /
+                                           mj.system().mass.coeff(n - 1, n - 1);
+                level = ts.bit_kinetic_torque(std::max(0.0, dir * mid));
+            }
+            mj.set_contact_bounds(bit_contact, ts.bit_static_torque(), level);
+            mj.step();
+            const double after = mj.velocities()(n - 1);
+            if (w != 0.0 && after == 0.0) out.bit_stick_times.push_back(mj.time());
+            if (w == 0.0 && after != 0.0) out.bit_release_times.push_back(mj.time() - run.step);
+        } else {
+            mj.step();
+        }
+    }
+    out.statistics = mj.statistics();
+    return out;
+}
+
+/// simulate(model, ...) with the run's settings, its rows at the legacy run's output times.
+Result entry_point_run(TorsionalString model, const TorsionalStringRunOptions& run, const std::vector<double>& times) {
+    model.set_slow_speed(run.slow_speed).set_bit_treatment(run.bit_treatment, run.switch_tolerance);
+    SolverOptions o;
+    o.method = run.treatment == ContactTreatment::projection ? Method::explicit_projection : Method::moreau_jean;
+    o.step = run.step;
+    o.theta = run.theta;
+    o.projection_band = run.projection_band;
+    o.output_times = times;
+    // the legacy captured loop counted its steps: its last row is at the time they add up to (t_end to rounding)
+    const double t_end = std::max(static_cast<double>(std::lround(run.t_end / run.step)) * run.step, times.back());
+    return simulate(model, t_end, o);
+}
+
+std::vector<double> switch_times(const Result& r, bool stick) {
+    std::vector<double> t;
+    for (const Event& e : r.events)
+        if ((stick ? e.mode_after : e.mode_before) == 0) t.push_back(e.time);
+    return t;
+}
+
+TorsionalString well_b_string(std::size_t elements, double control_period) {
+    WellBCase w = aarsnes_shor_well_b(CollarPolarMoment::as_published, CollarWaveSpeed::as_code);
+    w.params.control_period = control_period;
+    return TorsionalString(w.string, w.params, elements, w.survey, w.contact_radius);
+}
+
+}  // namespace
+
+TEST_CASE("one entry point: simulate(TorsionalString) equals the earlier run loop bit for bit", "[mixed][entry]") {
+    struct Setting {
+        const char* name;
+        TorsionalString model;
+        TorsionalStringRunOptions run;
+    };
+    std::vector<Setting> settings;
+    TorsionalStringRunOptions off;
+    off.t_end = 20.0;
+    off.slow_speed = 1.5;
+    settings.push_back({"Well B off bottom, sampled PI", well_b_string(60, 0.01), off});
+    off.slow_speed = 0.0;
+    settings.push_back({"Well B off bottom, continuous PI", well_b_string(60, 0.0), off});
+    off.step = 2e-3;
+    off.slow_speed = 1.5;
+    off.treatment = ContactTreatment::projection;
+    off.projection_band = 1.5;
+    settings.push_back({"Well B off bottom, explicit projection", well_b_string(60, 0.01), off});
+    const Case c(16, 0.1);
+    TorsionalStringRunOptions on;
+    on.t_end = 10.0;
+    on.output_interval = 0.02;
+    settings.push_back({"bit on bottom, captured, continuous PI", c.string(), on});
+    on.bit_treatment = BitTreatment::exact;
+    settings.push_back({"bit on bottom, exact (mixed), continuous PI", c.string(), on});
+    on.bit_treatment = BitTreatment::captured;
+    on.theta = 0.75;
+    Case sampled_case(16, 0.1);
+    sampled_case.params.control_period = 0.01;
+    settings.push_back({"bit on bottom, captured, sampled PI, theta 0.75", sampled_case.string(), on});
+
+    for (const Setting& s : settings) {
+        INFO(s.name);
+        const TorsionalStringRun legacy = legacy_run(s.model, s.run);
+        REQUIRE(legacy.time.size() > 100);
+        const Result r = entry_point_run(s.model, s.run, legacy.time);
+        REQUIRE(r.completed);
+        CHECK(r.status == 0);
+        CHECK(r.t == legacy.time);
+        CHECK(r.column_values("bit_speed") == legacy.bit_speed);
+        CHECK(r.column_values("top_drive_speed") == legacy.top_drive_speed);
+        CHECK(r.column_values("motor_torque") == legacy.motor_torque);
+        CHECK(r.column_values("stuck_fraction") == legacy.stuck_fraction);
+        CHECK(r.stats.steps == legacy.statistics.steps);
+        CHECK(r.stats.factorisations == legacy.statistics.factorisations);
+        CHECK(r.stats.linear_solves == legacy.statistics.solves);
+        CHECK(r.stats.contact_switches == legacy.statistics.contact_switches);
+        CHECK(r.stats.location_trials == legacy.bit_location_trials);
+        if (s.model.bit_on_bottom()) {
+            REQUIRE(legacy.bit_stick_times.size() >= 3);  // the bit is in stick-slip
+            CHECK(switch_times(r, true) == legacy.bit_stick_times);
+            CHECK(switch_times(r, false) == legacy.bit_release_times);
+        }
+        // the mode column is the bit's: at rest exactly when its speed is 0
+        for (std::size_t row = 0; row < r.rows(); ++row)
+            if (r.mode[row] == 0) CHECK(r.state(row, r.column("bit_speed")) == 0.0);
+        // the earlier interface is a thin wrapper over the same loop: its rows at k * output_interval
+        const TorsionalStringRun wrapped = s.model.simulate(s.run);
+        REQUIRE(wrapped.time.size() == legacy.time.size());
+        for (std::size_t row = 0; row < wrapped.time.size(); ++row) {
+            CHECK(wrapped.time[row] == Approx(legacy.time[row]).margin(1e-9));
+            CHECK(wrapped.bit_speed[row] == Approx(legacy.bit_speed[row]).margin(1e-9));
+        }
+        CHECK(wrapped.bit_stick_times == legacy.bit_stick_times);
+        CHECK(wrapped.statistics.steps == legacy.statistics.steps);
+    }
+}
+
+TEST_CASE("one entry point: stop conditions on the string, located between step ends", "[mixed][entry]") {
+    const Case c(16, 0.1);
+    TorsionalString exact = c.string();
+    exact.set_bit_treatment(BitTreatment::exact);
+    SolverOptions o;  // automatic: moreau_jean for a time-stepping model
+    o.output_times = grid(10.0, 0.02);
+    const Result full = simulate(exact, 10.0, o);
+    REQUIRE(full.completed);
+    const std::vector<double> sticks = switch_times(full, true);
+    REQUIRE(sticks.size() >= 3);
+    CHECK(full.stats.location_trials > 0);
+
+    // a switch into the bit's stick: the run ends at the exact treatment's located first stick
+    SolverOptions stop = o;
+    stop.stop_conditions = {StopCondition{"", 0.0, 0, "stick", true, "bit sticks"}};
+    const Result by_mode = simulate(exact, 10.0, stop);
+    CHECK(by_mode.completed);
+    CHECK(by_mode.status == 1);
+    REQUIRE(by_mode.stop_events.size() == 1);
+    CHECK(by_mode.stop_events[0].time == sticks[0]);
+    CHECK(by_mode.t_reached == sticks[0]);
+    CHECK(by_mode.t.back() == sticks[0]);
+    CHECK(by_mode.states[by_mode.states.size() - 4] == 0.0);  // bit_speed at rest in the last row
+
+    // the bit's speed falling to 0: the crossing is located at the same instant (the speed is 0 exactly there)
+    stop.stop_conditions = {StopCondition{"bit_speed", 0.0, -1, "", true, ""}};
+    const Result by_state = simulate(exact, 10.0, stop);
+    CHECK(by_state.status == 1);
+    REQUIRE(by_state.stop_events.size() == 1);
+    CHECK(by_state.stop_events[0].time == sticks[0]);
+    CHECK(by_state.t_reached == sticks[0]);
+
+    // a level between step ends: linear interpolation of the columns of the two steps around it
+    TorsionalString captured = c.string();
+    SolverOptions every_step;  // no output_times: a row at every step end
+    const Result steps = simulate(captured, 10.0, every_step);
+    REQUIRE(steps.rows() == 10001);
+    const std::size_t w = steps.column("bit_speed");
+    const double level = 2.0;
+    std::vector<double> rising;  // the crossings from the rows, by the same interpolation
+    for (std::size_t k = 0; k + 1 < steps.rows(); ++k) {
+        const double a = steps.state(k, w) - level, b = steps.state(k + 1, w) - level;
+        if (a < 0.0 && b >= 0.0) rising.push_back(steps.t[k] + (steps.t[k + 1] - steps.t[k]) * (-a) / (b - a));
+    }
+    REQUIRE(rising.size() >= 3);
+    SolverOptions logged = o;
+    logged.stop_conditions = {StopCondition{"bit_speed", level, +1, "", false, ""}};
+    const Result logged_run = simulate(captured, 10.0, logged);
+    CHECK(logged_run.status == 0);
+    REQUIRE(logged_run.stop_events.size() == rising.size());
+    for (std::size_t i = 0; i < rising.size(); ++i) {
+        CHECK(logged_run.stop_events[i].time == Approx(rising[i]).margin(1e-12));
+        CHECK(logged_run.stop_events[i].direction == 1);
+        CHECK(logged_run.stop_events[i].name == "bit_speed = 2");
+    }
+    logged.stop_conditions[0].terminal = true;
+    const Result ended = simulate(captured, 10.0, logged);
+    CHECK(ended.status == 1);
+    CHECK(ended.t_reached == Approx(rising[0]).margin(1e-12));
+    CHECK(ended.state(ended.rows() - 1, w) == Approx(level).epsilon(1e-9));  // the row where it holds
+    CHECK(ended.t[ended.rows() - 2] < rising[0]);  // the outputs before it, none after
+}
+
+TEST_CASE("one entry point: timeout, interrupt and max_output_rows keep a partial result", "[mixed][entry]") {
+    const TorsionalString string = well_b_string(1000, 0.01);  // field resolution: ~1e4 steps per wall-clock s here
+    SolverOptions o;
+    o.output_times = grid(150.0, 0.01);
+    // timeout: the budget ends the run, everything up to the time reached kept
+    o.timeout = 0.2;
+    double reached = -1.0;
+    try {
+        (void)simulate(string, 150.0, o);
+    } catch (const BudgetExceeded& e) {
+        CHECK(e.budget() == "timeout");
+        reached = e.time_reached();
+        REQUIRE(e.partial());
+        CHECK(!e.partial()->completed);
+        CHECK(e.partial()->status == -1);
+        CHECK(e.partial()->t_reached == reached);
+        REQUIRE(e.partial()->rows() > 1);
+        CHECK(e.partial()->t.back() <= reached + 1e-12);  // an output within 1e-9 h of a step end is taken there
+        CHECK(e.partial()->t.back() > reached - 0.01 - 1e-9);
+        CHECK(e.partial()->stats.steps == std::lround(reached / o.step));
+    }
+    CHECK(reached > 0.0);
+    CHECK(reached < 150.0);
+
+    // interrupt (the bindings' Ctrl-C): polled between steps; the first true stops the run
+    o.timeout = std::numeric_limits<double>::infinity();
+    int polls = 0;
+    o.interrupt = [&] { return ++polls >= 3; };
+    reached = -1.0;
+    try {
+        (void)simulate(string, 150.0, o);
+    } catch (const Interrupted& e) {
+        reached = e.time_reached();
+        REQUIRE(e.partial());
+        CHECK(e.partial()->t_reached == reached);
+        CHECK(e.partial()->t.back() <= reached + 1e-12);
+        CHECK(e.partial()->message.find("interrupted") != std::string::npos);
+    }
+    CHECK(polls == 3);
+    CHECK(reached > 0.0);
+    CHECK(reached < 150.0);
+
+    // max_output_rows: every step recorded, the run stops at the cap with the rows it has
+    const Case c(16, 0.1);
+    SolverOptions capped;
+    capped.max_output_rows = 50;
+    try {
+        (void)simulate(c.string(), 10.0, capped);
+        FAIL("max_output_rows did not stop the run");
+    } catch (const BudgetExceeded& e) {
+        CHECK(e.budget() == "max_output_rows");
+        REQUIRE(e.partial());
+        CHECK(e.partial()->rows() == 50);
+        CHECK(e.time_reached() == e.partial()->t.back());
+    }
+}
+
+TEST_CASE("one entry point: options that do not fit the model are refused, naming the option", "[mixed][entry]") {
+    const Case c(10, 0.1);
+    const TorsionalString string = c.string();
+    const auto run = [&](SolverOptions o, double t_end = 1.0) { return [&string, o, t_end] { (void)simulate(string, t_end, o); }; };
+    SolverOptions o;
+    o.method = Method::dormand_prince;  // an ODE method on the time-stepping model
+    CHECK(rejected_parameter(run(o)) == "method");
+    o.method = Method::cvode_bdf;
+    CHECK(rejection_message(run(o)).find("moreau_jean or explicit_projection") != std::string::npos);
+    o = SolverOptions{};
+    o.step = 0.0;
+    CHECK(rejected_parameter(run(o)) == "step");
+    o.step = -1e-3;
+    CHECK(rejected_parameter(run(o)) == "step");
+    o.step = 1e-3;
+    o.output_times = grid(1.0, 5e-4);  // the step larger than the output interval
+    CHECK(rejection_message(run(o)).find("not larger than the output interval") != std::string::npos);
+    o.output_times.clear();
+    o.step = 3e-3;  // 1 s is not a whole number of steps
+    CHECK(rejected_parameter(run(o)) == "step");
+    o.step = 1e-3;
+    o.theta = 0.3;
+    CHECK(rejected_parameter(run(o)) == "theta");
+    o.theta = 0.5;
+    o.stop_conditions = {StopCondition{"bit_angle", 1.0, 0, "", true, ""}};
+    CHECK(rejected_parameter(run(o)) == "stop_conditions.state");
+    o.stop_conditions.clear();
+    o.timeout = 0.0;
+    CHECK(rejected_parameter(run(o)) == "timeout");
+    o.timeout = std::numeric_limits<double>::infinity();
+    CHECK(rejected_parameter(run(o, -1.0)) == "t_end");
+
+    // Method::moreau_jean on an event-driven rig
+    SolverOptions mj;
+    mj.method = Method::moreau_jean;
+    const Rig rig = c.rig(string);
+    CHECK(rejected_parameter([&] { (void)simulate(rig, 1.0, mj); }) == "method");
+    mj.method = Method::explicit_projection;
+    CHECK(rejection_message([&] { (void)simulate(rig, 1.0, mj); }).find("an ODE method") != std::string::npos);
+
+    // the model's own settings
+    TorsionalString m = c.string();
+    CHECK(rejected_parameter([&] { m.set_bit_treatment(BitTreatment::exact, 0.0); }) == "switch_tolerance");
+    CHECK(rejected_parameter([&] { m.set_slow_speed(-1.0); }) == "slow_speed");
+    Case sampled(10, 0.1);
+    sampled.params.control_period = 0.01;
+    TorsionalString sampled_exact = sampled.string();
+    sampled_exact.set_bit_treatment(BitTreatment::exact);
+    CHECK(rejected_parameter([&] { (void)simulate(sampled_exact, 1.0, SolverOptions{}); }) == "control_period");
+    SolverOptions coarse;
+    coarse.step = 4e-3;  // 0.01 s is not a whole number of 4 ms steps
+    CHECK(rejected_parameter([&] { (void)simulate(sampled.string(), 1.0, coarse); }) == "control_period");
+}
