@@ -833,3 +833,85 @@ TEST_CASE("one entry point: options that do not fit the model are refused, namin
     coarse.step = 4e-3;  // 0.01 s is not a whole number of 4 ms steps
     CHECK(rejected_parameter([&] { (void)simulate(sampled.string(), 1.0, coarse); }) == "control_period");
 }
+
+namespace {
+
+/// A user's own time-stepping model (the concept of solve/time_stepping.hpp): x' = a x by explicit Euler from
+/// x = 1, so the rows are (1 + a h)^k at the step ends and linear in between.
+struct EulerGrowth {
+    static constexpr bool time_stepping = true;
+    double rate = 1.0;
+    std::vector<std::string> state_names() const { return {"x"}; }
+    const char* mode_name(int) const { return "growing"; }
+    struct Stepper {
+        double a, h, t, x, t0, x0;
+        std::vector<Event> log;
+        double time() const { return t; }
+        bool finished(double t_end) const { return t + 0.5 * h >= t_end; }
+        void step(double, bool) {
+            t0 = t;
+            x0 = x;
+            x += h * a * x;
+            t += h;
+        }
+        int row(double at, double* out) const {
+            const double s = t > t0 ? std::clamp((at - t0) / (t - t0), 0.0, 1.0) : 1.0;
+            out[0] = (1.0 - s) * x0 + s * x;
+            return 1;
+        }
+        double friction_force() const { return 0.0; }
+        const std::vector<Event>& events() const { return log; }
+        void add_stats(SolverStats& stats) const { stats.steps = std::lround((t - t0) / h); }
+    };
+    Stepper make_stepper(const TimeStepping& s) const { return Stepper{rate, s.step, s.t_start, 1.0, s.t_start, 1.0, {}}; }
+};
+
+}  // namespace
+
+TEST_CASE("one entry point: a user's own time-stepping model; non-finite states and max_steps stop the run",
+          "[mixed][entry]") {
+    const EulerGrowth model;
+    SolverOptions o;  // automatic: moreau_jean's loop; the model ignores what it does not use
+    o.step = 0.1;
+    o.output_times = {0.05, 0.5, 0.85, 1.0};
+    const Result r = simulate(model, 1.0, o);
+    REQUIRE(r.rows() == 4);
+    CHECK(r.states[0] == Approx(1.05).epsilon(1e-14));                                          // inside step 1
+    CHECK(r.states[1] == Approx(std::pow(1.1, 5)).epsilon(1e-12));                              // a step end
+    CHECK(r.states[2] == Approx(0.5 * (std::pow(1.1, 8) + std::pow(1.1, 9))).epsilon(1e-12));  // mid step 9
+    CHECK(r.states[3] == Approx(std::pow(1.1, 10)).epsilon(1e-12));
+    CHECK(r.mode == std::vector<int>(4, 1));
+    CHECK(r.t_reached == 1.0);
+
+    // overflow: the rows up to the last finite one are kept, the run fails at it (NaN / inf never success)
+    EulerGrowth huge;
+    huge.rate = 1e300;
+    SolverOptions every;
+    every.step = 1.0;
+    try {
+        (void)simulate(huge, 10.0, every);
+        FAIL("a non-finite state did not stop the run");
+    } catch (const SimulationError& e) {
+        CHECK(std::string(e.what()).find("non-finite") != std::string::npos);
+        REQUIRE(e.partial());
+        CHECK(e.partial()->rows() == 2);  // x = 1 at 0 and 1e300 at 1
+        CHECK(e.time_reached() == 1.0);
+        CHECK(e.partial()->status == -1);
+    }
+    SolverOptions sparse = every;
+    sparse.output_times = {0.0};  // the final state is checked even when no row records it
+    CHECK_THROWS_AS(simulate(huge, 10.0, sparse), SimulationError);
+
+    SolverOptions bounded = o;
+    bounded.output_times.clear();
+    bounded.max_steps = 3;
+    try {
+        (void)simulate(model, 1.0, bounded);
+        FAIL("max_steps did not stop the run");
+    } catch (const SimulationError& e) {
+        CHECK(std::string(e.what()).find("max_steps") != std::string::npos);
+        REQUIRE(e.partial());
+        CHECK(e.partial()->rows() == 4);
+        CHECK(e.time_reached() == Approx(0.3).epsilon(1e-14));
+    }
+}
