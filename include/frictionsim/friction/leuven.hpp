@@ -30,7 +30,9 @@
 //    normal force.
 //  * The wiping-out is read off the state between reversals (a loop counts as closed once z has passed its turning
 //    point along the motion), and committed at the next reversal: no extra event, and F_h is a continuous function of
-//    z (its slope and dz/dt change at a closing point, which the step control resolves).
+//    z (its slope and dz/dt change at a closing point, which the step control resolves). The one difference from
+//    popping at the closing itself: if the Stribeck level then falls below the closed turning point's force within
+//    the same motion (z drawn back past it, r > 1), the loop counts as open again until then.
 //  * The 2002 denominator S(v) - F_b reaches zero when the Stribeck level falls to a turning point's force (a
 //    reversal above the Coulomb level, then acceleration): the attraction to S would then turn into a repulsion. The
 //    transition is kept at least a fraction eps = min_transition_span of |S| long: r = 1 - (S - F_h) / D with
@@ -78,6 +80,8 @@ bottom_turning_force [N], turning_point_1..8 [m]), which changes only at reversa
         "presliding_displacement", "turning_point_count", "memory_truncated", "bottom_turning_force",
         "turning_point_1", "turning_point_2", "turning_point_3", "turning_point_4",
         "turning_point_5", "turning_point_6", "turning_point_7", "turning_point_8"};
+    static constexpr std::array<const char*, state_count> state_units{  ///< SI; "1" a count or a flag
+        "m", "1", "1", "N", "m", "m", "m", "m", "m", "m", "m", "m"};
     /// eps: the shortest transition, as a fraction of |S(v)|, that the state equation uses (see above).
     static constexpr double min_transition_span = 1e-2;
 
