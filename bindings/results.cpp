@@ -30,9 +30,10 @@ struct EventLog {
     std::vector<Event> events;
 };
 
+/// The run up to the failure as a frictionsim.Result (so frictionsim.errors needs nothing of the package).
 py::object partial_result(const SimulationError& e) {
     if (!e.partial()) return py::none();
-    return py::cast(std::const_pointer_cast<Result>(e.partial()));
+    return py::module_::import("frictionsim.result").attr("Result")(std::const_pointer_cast<Result>(e.partial()));
 }
 
 }  // namespace
@@ -75,7 +76,11 @@ void register_results(py::module_& m) {
         .value("dormand_prince", Method::dormand_prince, "explicit RK5(4), dense output, root location")
         .value("cvode_bdf", Method::cvode_bdf, "SUNDIALS CVODE BDF + Newton, dense linear solver")
         .value("cvode_adams", Method::cvode_adams, "SUNDIALS CVODE Adams-Moulton + fixed point")
-        .value("rosenbrock", Method::rosenbrock, "RODAS4 (linearly implicit, stiff; needs Eigen: HAS_EIGEN)");
+        .value("rosenbrock", Method::rosenbrock, "RODAS4 (linearly implicit, stiff; needs Eigen: HAS_EIGEN)")
+        .value("moreau_jean", Method::moreau_jean,
+               "time-stepping models (TorsionalString): Moreau-Jean's theta-method, contacts captured; step, theta")
+        .value("explicit_projection", Method::explicit_projection,
+               "time-stepping models: the field codes' explicit scheme (step below the element's wave transit)");
 
     py::enum_<LinearSolver>(m, "LinearSolver", "Linear solver of CVODE BDF's Newton iteration.")
         .value("automatic", LinearSolver::automatic, "band when the system declares a banded Jacobian, else dense")
@@ -135,6 +140,9 @@ void register_results(py::module_& m) {
         .def_readwrite("event_window", &SolverOptions::event_window)
         .def_readwrite("timeout", &SolverOptions::timeout)
         .def_readwrite("max_output_rows", &SolverOptions::max_output_rows)
+        .def_readwrite("step", &SolverOptions::step)
+        .def_readwrite("theta", &SolverOptions::theta)
+        .def_readwrite("projection_band", &SolverOptions::projection_band)
         .def_readonly_static("max_rtol", &SolverOptions::max_rtol)
         .def_readonly_static("min_rtol", &SolverOptions::min_rtol)
         .def("validate", &SolverOptions::validate, py::arg("state_size") = 1,

@@ -56,6 +56,9 @@ Result simulate_built_in(const System& system, double t_end, const SolverOptions
 #if defined(FRICTIONSIM_SUNDIALS) && FRICTIONSIM_SUNDIALS
     return simulate(system, t_end, options, t_start);
 #else
+    if (is_time_stepping_method(options.method))  // below, every other method becomes dormand_prince
+        throw InvalidParameter("method", std::string("simulate: method = ") + method_name(options.method) +
+                                             " steps time-stepping models (TorsionalString), not this rig");
     const bool cvode = options.method == Method::cvode_bdf || options.method == Method::cvode_adams;
     if (cvode) {
         throw InvalidParameter("method", std::string("simulate: method = ") + method_name(options.method) +

@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "rig_binding.hpp"
 
 #if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+#include <frictionsim/solve/time_stepping.hpp>
 #include <frictionsim/string/torsional_string.hpp>
 #endif
 
@@ -27,6 +29,7 @@ constexpr auto fields = TorsionalStringParams::fields();
 /// More elements than any string needs (a 6 km string at 1 m): a guard against a typo allocating gigabytes.
 constexpr long max_elements = 100000;
 constexpr long default_elements = 200;
+constexpr double default_switch_tolerance = 1e-10;
 
 /// How the string's contacts are treated: every one captured by the time-stepping, or the bit's stick and slip
 /// located exactly with the walls still captured ("mixed"). Every contact exact is the event-driven fs.StringRig.
@@ -43,6 +46,12 @@ Treatment treatment_from(py::handle value) {
     const std::string hint = s == "exact" ? " (every contact exact, located as events, is fs.StringRig)" : "";
     throw InvalidParameter("treatment", std::string(name) + ": treatment must be 'captured' or 'mixed' (got " +
                                             std::string(py::repr(value)) + ")" + hint);
+}
+
+double real_from(py::handle value, const char* keyword) {
+    if (py::isinstance<py::bool_>(value) || py::isinstance<py::str>(value) || !py::hasattr(value, "__float__"))
+        throw py::type_error(std::string(name) + ": " + keyword + " must be a number (got " + type_name(value) + ")");
+    return value.attr("__float__")().cast<double>();
 }
 
 std::vector<double> reals_from(py::handle value, const char* keyword) {
@@ -89,22 +98,29 @@ struct BoundTorsionalString {
     std::optional<std::vector<double>> radius;  ///< as given; none: each section's OD / 2
     std::optional<NavarroLopezBit> bit;         ///< as given; none: the default NavarroLopezBit
     Treatment treatment;
+    double slow_speed, switch_tolerance;
     TorsionalString model;
 
     BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, InclinationSurvey sv,
-                         std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t)
+                         std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t,
+                         double slow, double tolerance)
         : string(std::move(s)), params(p), elements(n), survey(std::move(sv)), radius(std::move(r)), bit(std::move(b)),
-          treatment(t), model(checked(string, survey, treatment, params, elements), params, elements, survey,
-                              radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {}
+          treatment(t), slow_speed(slow), switch_tolerance(tolerance),
+          model(checked(string, survey, treatment, params, elements), params, elements, survey,
+                radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {
+        model.set_bit_treatment(t == Treatment::mixed ? BitTreatment::exact : BitTreatment::captured, tolerance);
+        model.set_slow_speed(slow);
+    }
 
 private:
     /// What the C++ constructor does not check: a survey that ends above the bit, a treatment without a bit.
     static const DrillString& checked(const DrillString& s, const InclinationSurvey& survey, Treatment t,
                                       const TorsionalStringParams& p, std::size_t) {
-        if (!survey.measured_depth.empty() && survey.measured_depth.back() < s.length())
-            detail::reject(name, "survey", "reaching the bit (its last measured depth >= the string's length, " +
-                                               format_double(s.length()) + " m; given)",
-                           survey.measured_depth.back());
+        if (!survey.measured_depth.empty() && survey.measured_depth.back() < s.length()) {
+            const std::string rule = "reaching the bit (its last measured depth >= the string's length, " +
+                                     format_double(s.length()) + " m; last given)";
+            detail::reject(name, "survey", rule.c_str(), survey.measured_depth.back());
+        }
         if (t == Treatment::mixed && !(p.weight_on_bit > 0.0))
             throw InvalidParameter("treatment", std::string(name) + ": treatment 'mixed' locates the bit's stick "
                                                 "and slip, and this string's bit is off bottom (weight_on_bit = 0): "
@@ -126,6 +142,8 @@ py::dict extras_of(const BoundTorsionalString& r) {
     d["contact_radius"] = r.radius ? py::cast(*r.radius) : py::object(py::none());
     d["bit"] = r.bit ? py::cast(*r.bit) : py::object(py::none());
     d["treatment"] = treatment_name(r.treatment);
+    d["slow_speed"] = r.slow_speed;
+    d["switch_tolerance"] = r.switch_tolerance;
     return d;
 }
 
@@ -140,6 +158,7 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
     std::optional<std::vector<double>> radius;
     std::optional<NavarroLopezBit> bit;
     Treatment treatment = Treatment::captured;
+    double slow_speed = 0.0, switch_tolerance = default_switch_tolerance;
     const auto given = [&](const char* key) {
         const bool present = kwargs.contains(key) && !kwargs[key].is_none();
         used += kwargs.contains(key) ? 1 : 0;
@@ -166,17 +185,31 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
         bit = b.cast<NavarroLopezBit>();
     }
     if (given("treatment")) treatment = treatment_from(kwargs["treatment"]);
+    if (given("slow_speed")) slow_speed = real_from(kwargs["slow_speed"], "slow_speed");
+    if (given("switch_tolerance")) switch_tolerance = real_from(kwargs["switch_tolerance"], "switch_tolerance");
     if (used != kwargs.size())
         for (auto item : kwargs) {
             const std::string key = py::str(item.first);
             bool known = key == "elements" || key == "survey" || key == "contact_radius" || key == "bit" ||
-                         key == "treatment";
+                         key == "treatment" || key == "slow_speed" || key == "switch_tolerance";
             for (const Field<TorsionalStringParams>& f : fields) known = known || key == f.public_name();
             if (!known)
                 throw py::type_error(std::string(name) + "() got an unexpected keyword argument '" + key + "'");
         }
     return BoundTorsionalString(string.cast<DrillString>(), p, static_cast<std::size_t>(elements), std::move(survey),
-                                std::move(radius), std::move(bit), treatment);
+                                std::move(radius), std::move(bit), treatment, slow_speed, switch_tolerance);
+}
+
+/// simulate_variant's run for a time-stepping model: the GIL released, Ctrl-C polled between steps.
+std::shared_ptr<Result> run_string(const BoundTorsionalString& r, double t_end, const SolverOptions& options, double t_start) {
+    SolverOptions polled = options;
+    polled.interrupt = &python_signal_raised;
+    try {
+        py::gil_scoped_release release;
+        return std::make_shared<Result>(simulate_time_stepping(r.model, t_end, polled, t_start));
+    } catch (const Interrupted&) {
+        raise_pending_python_error();
+    }
 }
 
 const char* description = R"doc(
@@ -231,7 +264,8 @@ py::object register_torsional_string(py::module_& m) {
         signature += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
     signature += ", elements: int = " + std::to_string(default_elements) +
                  ", survey: object | None = None, contact_radius: collections.abc.Sequence[float] | None = None, "
-                 "bit: NavarroLopezBit | None = None, treatment: str = 'captured') -> None\n\n"
+                 "bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, "
+                 "switch_tolerance: float = " + format_double(default_switch_tolerance) + ") -> None\n\n"
                  "The string, then the set-up and the parameters by keyword (see the class docstring).\n";
     py::options options;
     options.disable_function_signatures();
@@ -285,6 +319,10 @@ py::object register_torsional_string(py::module_& m) {
         .def_property_readonly("period_estimate", [](const BoundTorsionalString& r) { return r.model.period_estimate(); },
                                "A&S eq 40: build_up_time + fundamental_period [s] (an upper estimate of the stick-slip "
                                "period).")
+        .def_property_readonly("slow_speed", [](const BoundTorsionalString& r) { return r.slow_speed; })
+        .def_property_readonly("switch_tolerance", [](const BoundTorsionalString& r) { return r.switch_tolerance; })
+        .def_property_readonly("state_names", [](const BoundTorsionalString& r) { return r.model.state_names(); })
+        .def("_simulate", &run_string, py::arg("t_end"), py::arg("options"), py::arg("t_start"))
         .def("__reduce__", [](py::handle self) {
             const auto& r = self.cast<const BoundTorsionalString&>();
             py::dict kwargs = field_keywords(r.params, fields);
@@ -297,6 +335,8 @@ py::object register_torsional_string(py::module_& m) {
                 const std::string key = py::str(item.first);
                 if (item.second.is_none()) continue;
                 if (key == "treatment" && r.treatment == Treatment::captured) continue;
+                if (key == "slow_speed" && r.slow_speed == 0.0) continue;
+                if (key == "switch_tolerance" && r.switch_tolerance == default_switch_tolerance) continue;
                 out += ", " + key + "=" + std::string(py::repr(item.second));
             }
             return out + changed_fields_repr(r.params, fields) + ")";
@@ -322,15 +362,16 @@ py::object register_torsional_string(py::module_& m) {
         all["elements"] = 1000;
         all["survey"] = survey_to_python(c.survey);
         all["contact_radius"] = py::cast(c.contact_radius);
+        all["slow_speed"] = 1.5;  // the stuck fraction as A&S's code counts it
         for (auto item : kwargs) all[item.first] = item.second;  // the caller's overrides
-        return make(py::cast(c.string), all);
+        return make(py::cast(c.string), py::reinterpret_borrow<py::kwargs>(all));
     },
           py::arg("collar") = "as_published", py::arg("wave_speed") = "as_code", py::arg("measured_depth") = 2500.0,
           R"doc(Well B of Aarsnes & Shor (2018) as a TorsionalString (parameters_WellB.m, MAIN.m: mu 0.3, f_rat 0.65,
 40 rpm), at measured_depth [m] (230 < md <= 4000): 5.77" pipe above a 230 m BHA averaged over its four sections,
 G 61 / 67 GPa, rho 7850, I_TD 2900, k_p 38e3, k_i 100e3, the survey 0 / 0 / 60 / 60 deg at 0 / 500 / 1600 /
 4000 m, omega_c 1.5 rad/s, the PI sampled every 0.01 s, the code's damping at its grid; elements 1000 (the
-published grid). Further keywords (elements=, treatment=, any table keyword) override the preset's.
+published grid), the stuck fraction counted below 1.5 rad/s (slow_speed) as the code counts it. Further keywords (elements=, treatment=, any table keyword) override the preset's.
 
 collar : {"as_published", "corrected"}
     The collar's polar moment: parameters_WellB.m's line carries an extra factor pi ("as_published", what the

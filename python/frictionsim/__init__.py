@@ -15,6 +15,7 @@ boundary: frictionsim.units).
 
 from ._core import (
     FRICTION_LAWS,
+    HAS_EIGEN,
     HAS_SUNDIALS,
     AxialVibrationRig,
     DetournayBit,
@@ -22,6 +23,8 @@ from ._core import (
     HydraulicOscillator,
     HystereticFriction,
     KinematicRig,
+    NavarroLopez2Dof,
+    NavarroLopez4Dof,
     NavarroLopezBit,
     OscillatorResponse,
     Parameter,
@@ -37,6 +40,8 @@ from ._core import (
     vibration_velocity_amplitude,
 )
 from ._core import CallableLaw  # a friction law written in Python (not in FRICTION_LAWS)
+if HAS_EIGEN:  # the Moreau-Jean string needs an extension built with Eigen
+    from ._core import TorsionalString, aarsnes_shor_well_b
 from .errors import AccuracyWarning, BudgetExceededError, ChatteringError, InvalidParameterError, SimulationError
 from .result import Event, Result
 from .simulation import METHODS, SOLVER_DEFAULTS, simulate
@@ -65,10 +70,13 @@ __all__ = [
     "HystereticFriction",
     "Event",
     "FRICTION_LAWS",
+    "HAS_EIGEN",
     "HAS_SUNDIALS",
     "InvalidParameterError",
     "KinematicRig",
     "METHODS",
+    "NavarroLopez2Dof",
+    "NavarroLopez4Dof",
     "NavarroLopezBit",
     "OscillatorResponse",
     "Parameter",
@@ -89,7 +97,7 @@ __all__ = [
     "table5",
     "units",
     "vibration_velocity_amplitude",
-] + [_law.__name__ for _law in FRICTION_LAWS]
+] + [_law.__name__ for _law in FRICTION_LAWS] + (["TorsionalString", "aarsnes_shor_well_b"] if HAS_EIGEN else [])
 
 
 def __getattr__(name: str):

@@ -16,10 +16,13 @@ from .result import Result
 
 __all__ = ["simulate", "METHODS", "LINEAR_SOLVERS", "SOLVER_DEFAULTS"]
 
-#: Integrator names accepted by simulate(method=...).
-METHODS = ("automatic", "dormand_prince", "cvode_bdf", "cvode_adams")
+#: Integrator names accepted by simulate(method=...): the engine's Method enum.
+METHODS = tuple(_core.Method.__members__)
 #: Linear solvers of CVODE BDF's Newton iteration accepted by simulate(linear_solver=...) (the engine's enum).
 LINEAR_SOLVERS = tuple(_core.LinearSolver.__members__)
+
+#: The methods that step a time-stepping model (TorsionalString) with a fixed step instead of locating events.
+TIME_STEPPING_METHODS = tuple(m for m in ("moreau_jean", "explicit_projection") if m in METHODS)
 
 Rig = Union["_core.AxialVibrationRig", "_core.KinematicRig", "_core.TorsionalRig", "_core.StringRig"]
 
@@ -38,7 +41,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              event_window: float = SOLVER_DEFAULTS.event_window, t_start: float = 0.0,
              timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
              events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
-             record_event_states: Optional[bool] = None) -> Result:
+             record_event_states: Optional[bool] = None, step: Optional[float] = None,
+             theta: Optional[float] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
@@ -47,13 +51,23 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
 
     Parameters
     ----------
-    rig : AxialVibrationRig, KinematicRig, TorsionalRig or StringRig
+    rig : AxialVibrationRig, KinematicRig, TorsionalRig, StringRig, NavarroLopez2Dof, NavarroLopez4Dof or TorsionalString
+        TorsionalString is a time-stepping model: it runs by "moreau_jean" (its "automatic") or
+        "explicit_projection" with a fixed ``step``; the others by the ODE methods, every switch located.
     t_end : float, s
-    method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams"}
+    method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams", "rosenbrock", "moreau_jean", "explicit_projection"}
         "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
-        (measured faster on these rigs, see the README). An extension built without SUNDIALS
-        (``fs.HAS_SUNDIALS`` is False) runs "automatic" as Dormand-Prince for every law, and "cvode_bdf" /
-        "cvode_adams" raise InvalidParameterError saying how to get them.
+        (measured faster on these rigs, see the README). "rosenbrock" is RODAS4 (linearly implicit, order 4,
+        stiff, no Newton iteration; the extension needs Eigen: ``fs.HAS_EIGEN``). An extension built without
+        SUNDIALS (``fs.HAS_SUNDIALS`` is False) runs "automatic" as Dormand-Prince for every law, and "cvode_bdf" /
+        "cvode_adams" raise InvalidParameterError saying how to get them. "moreau_jean" (Moreau-Jean's theta-method
+        on each step's contact inclusion) and "explicit_projection" (the field codes' explicit scheme) step a
+        time-stepping model (TorsionalString) and only that.
+    step : float, s, optional
+        The time-stepping methods' fixed step h (default the engine's, 1 ms): not larger than the gap between
+        ``output_times``, and t_end - t_start a whole number of steps. Refused for the ODE methods.
+    theta : float, optional
+        Moreau-Jean's theta in [0.5, 1] (default 0.5: the linear part's energy kept; 1 damps it).
     linear_solver : {"automatic", "dense", "band", "sparse"}
         The linear solver of CVODE BDF's Newton iteration: "automatic" is band LU where the rig declares a banded
         Jacobian (a StringRig: its nodes couple only their neighbours), dense LU otherwise; "sparse" (KLU) only
@@ -133,13 +147,22 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     options.record_event_rows = _flag("record_events", record_events)
     if record_event_states is not None:
         options.record_event_states = _flag("record_event_states", record_event_states)
+    time_stepping = method in TIME_STEPPING_METHODS or (method == "automatic" and _is_time_stepping(rig))
+    for name, value in (("step", step), ("theta", theta)):
+        if value is None:
+            continue
+        if not time_stepping:
+            raise InvalidParameterError(f"{name} is an option of the time-stepping methods "
+                                        f"({', '.join(TIME_STEPPING_METHODS)}), not of method {method!r} on a "
+                                        f"{type(rig).__name__}", name)
+        setattr(options, name, _real(name, value))
     started = time.time()
     try:
         raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))
     except SimulationError as error:
-        error._period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
         partial = error.partial
         if partial is not None:  # the partial result records what ran, as a completed one does
+            partial.period = rig.period  # so error.partial.mean_over_cycles() knows the rig's period
             partial._run = (rig, options, started, conditions)
             partial.stop_condition_count = len(conditions)
         raise
@@ -149,6 +172,10 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     for message in result.warnings:
         warnings.warn(message, AccuracyWarning, stacklevel=2)
     return result
+
+
+def _is_time_stepping(rig) -> bool:
+    return type(rig).__name__ == "TorsionalString"
 
 
 def _stop_conditions(events) -> List["_core.StopCondition"]:

@@ -314,3 +314,120 @@ def test_a_new_table_with_any_parameters_builds_or_is_refused_naming_the_paramet
         return
     assert expect, f"invalid parameters accepted: {kwargs} -> {built!r}"
     assert all(getattr(built, k) == v for k, v in kwargs.items())
+
+
+# ------------------------------------------------------------------------------ Well B through fs.simulate
+def cycle_figures(t, bit_speed, motor_torque):
+    """tests/aarsnes_shor.test.cpp's cycle statistics: a cycle starts when the bit passes 5 rad/s after resting
+    (< 0.5 rad/s); the cycles starting after 15 s that end before the run does; per cycle its bit peak, duration and
+    the motor torque's max and min."""
+    starts, armed = [], True
+    for i, w in enumerate(bit_speed):
+        armed = armed or w < 0.5
+        if armed and w > 5.0:
+            starts.append(i)
+            armed = False
+    figures = {"peak": [], "period": [], "max_torque": [], "min_torque": []}
+    for a, b in zip(starts, starts[1:]):
+        if t[a] < 15.0:
+            continue
+        figures["period"].append(t[b] - t[a])
+        figures["peak"].append(np.max(bit_speed[a:b]))
+        figures["max_torque"].append(np.max(motor_torque[a:b]))
+        figures["min_torque"].append(np.min(motor_torque[a:b]))
+    assert len(figures["period"]) >= 3
+    return {k: np.array(v) for k, v in figures.items()}
+
+
+def same_mean(a, b, resolution=0.0) -> bool:
+    """Cycle means within three combined standard errors (plus `resolution`), as the C++ test compares them."""
+    se = math.hypot(np.std(a, ddof=1) / math.sqrt(len(a)), np.std(b, ddof=1) / math.sqrt(len(b)))
+    return abs(np.mean(a) - np.mean(b)) <= 3.0 * se + resolution
+
+
+@needs_eigen
+@pytest.mark.parametrize("collar", ["as_published", "corrected"])
+def test_well_b_through_simulate_has_the_published_codes_limit_cycle(collar):
+    """Well B at the published grid (1000 cells, h = 2 ms, outputs every 0.01 s) against the published code's run
+    (tests/data/aarsnes_shor_2018): bit peak, period and motor torque extremes, cycle by cycle."""
+    ts = fs.aarsnes_shor_well_b(collar=collar, wave_speed="as_code", elements=1000)
+    times = np.round(np.arange(0.0, 60.0 + 1e-9, 0.01), 10)
+    result = fs.simulate(ts, 60.0, method="moreau_jean", step=2e-3, output_times=times)
+    assert result.completed and np.all(np.isfinite(result.states))
+    ours = cycle_figures(result.t, result["bit_speed"], result["motor_torque"])
+    reference = np.genfromtxt(DATA / f"wellb_2500m_40rpm_1000cells_{'published' if collar == 'as_published' else 'corrected'}.csv",
+                              delimiter=",", names=True)
+    theirs = cycle_figures(reference["time_s"], reference["bit_speed_rad_s"], reference["motor_torque_N_m"])
+    assert same_mean(ours["peak"], theirs["peak"])
+    assert same_mean(ours["period"], theirs["period"], 0.02)  # the outputs' 0.01 s, at both ends
+    assert same_mean(ours["max_torque"], theirs["max_torque"])
+    assert same_mean(ours["min_torque"], theirs["min_torque"])
+    # the paper's closed forms bracket the cycle: t_fp < period < t_bu + t_fp, the top drive overshoots eq 27
+    assert ts.fundamental_period < np.mean(ours["period"]) < ts.period_estimate
+    assert np.mean(ours["max_torque"]) > ts.breakoff_torque
+    assert np.mean(ours["min_torque"]) == pytest.approx(ts.minimum_torque, rel=0.15)  # eq 30's "approximately"
+    # the stuck fraction as the code counts it (|omega| < 1.5 rad/s), after the start-up
+    late = reference["time_s"] >= 15.0
+    assert abs(np.mean(result["stuck_fraction"][result.t >= 15.0]) - np.mean(reference["stuck_fraction"][late])) < 0.03
+
+
+@needs_eigen
+@pytest.mark.parametrize("make, parameter", [
+    (lambda ts: fs.simulate(ts, 1.0, method="moreau_jean", step=0.02, output_times=[0.0, 0.01, 1.0]), "step"),
+    (lambda ts: fs.simulate(ts, 1.0, method="moreau_jean", step=0.3), "step"),  # not a whole fraction of t_end
+    (lambda ts: fs.simulate(ts, 1.0, method="dormand_prince"), "method"),  # an ODE method on a time-stepping model
+    (lambda ts: fs.simulate(fs.NavarroLopez2Dof(), 1.0, step=1e-3), "step"),  # step on an event-driven rig
+    (lambda ts: fs.simulate(fs.NavarroLopez2Dof(), 1.0, method="moreau_jean"), "method"),
+    (lambda ts: fs.simulate(ts, 1.0, method="moreau_jean", theta=0.2), "theta"),
+])
+def test_bad_run_options_of_the_torsional_string_are_named(make, parameter):
+    ts = fs.aarsnes_shor_well_b(elements=20)
+    with pytest.raises(fs.InvalidParameterError) as error:
+        make(ts)
+    assert error.value.parameter == parameter, error.value
+
+
+@needs_eigen
+def test_a_timeout_keeps_the_partial_result_of_a_1000_element_run():
+    ts = fs.aarsnes_shor_well_b(elements=1000)
+    with pytest.raises(fs.BudgetExceededError) as info:
+        fs.simulate(ts, 3600.0, step=1e-3, timeout=0.3)
+    error = info.value
+    assert error.budget == "timeout" and 0.0 < error.time_reached < 3600.0
+    partial = error.partial
+    assert not partial.completed and len(partial.t) > 1 and np.all(np.isfinite(partial.states))
+    assert partial.t[-1] <= error.time_reached + 1e-9
+
+
+@needs_eigen
+def test_ctrl_c_stops_a_1000_element_run():
+    import _thread
+    import threading
+
+    ts = fs.aarsnes_shor_well_b(elements=1000)
+    # interrupt_main trips SIGINT's handler as Ctrl-C does; the run would take minutes, the budget (not a timing
+    # assertion) would end it as BudgetExceededError if the signal were not polled
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            fs.simulate(ts, 3600.0, step=1e-3, timeout=60.0)
+    finally:
+        timer.cancel()
+
+
+@needs_eigen
+def test_mixed_treatment_locates_the_bits_switches():
+    ts = fs.aarsnes_shor_well_b(elements=100, weight_on_bit=60e3, treatment="mixed", control_period=0.0)
+    captured = fs.aarsnes_shor_well_b(elements=100, weight_on_bit=60e3, control_period=0.0)
+    times = np.linspace(0.0, 40.0, 401)
+    a = fs.simulate(ts, 40.0, step=2e-3, output_times=times)
+    b = fs.simulate(captured, 40.0, step=2e-3, output_times=times)
+    assert a.completed and b.completed
+    # the located switches fall between the step grid's points; the captured ones on it
+    located = np.array([e.time for e in a.events])
+    assert located.size > 0
+    assert np.any(np.abs(located / 2e-3 - np.round(located / 2e-3)) > 1e-3)
+    # the same physics: the cycle-mean bit speed agrees within a few per cent
+    late = times >= 20.0
+    assert np.mean(a["bit_speed"][late]) == pytest.approx(np.mean(b["bit_speed"][late]), rel=0.05)
