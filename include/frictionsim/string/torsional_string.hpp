@@ -1,6 +1,8 @@
 // A torsional drill string with distributed Coulomb stiction along the wellbore, a PI top drive and the bit off
 // bottom: the model of Aarsnes and Shor (2018, J. Pet. Sci. Eng. 163, 712-721; "A&S" below), on the lumped string of
-// drillstring/sections.hpp and stepped by Moreau-Jean (solve/moreau_jean.hpp).
+// string/sections.hpp and stepped by Moreau-Jean (eigen/moreau_jean.hpp). A time-stepping model: simulate(string,
+// t_end, SolverOptions) runs it (Method::moreau_jean or explicit_projection, solve/time_stepping.hpp's loop) and
+// returns the same Result as the rigs.
 //   string:    node inertias and element springs from DrillString::lump(N); viscous damping k_t rho J omega per
 //              unit length (A&S eq 3), i.e. k_t times each node's string inertia;
 //   wall:      at each node a Coulomb contact, static torque bound = the integral over the node's half elements of
@@ -15,9 +17,9 @@
 //              NavarroLopezBit of bit_rock.hpp) at node N, merged with node N's wall contact into one contact (both
 //              act on the same dof: the bounds add), its slip level taken at the speed predicted for each step's
 //              middle (LumpedFriction's rule, moreau_jean_events.hpp: second order where the start's is first).
-//              Its treatment is a run option: captured by Moreau-Jean with the walls, or exact (its stick <-> slip
-//              located and restarted by solve/moreau_jean_events.hpp, the walls still captured); c_b is a linear
-//              damper at N.
+//              Its treatment is the model's (set_bit_treatment): captured by Moreau-Jean with the walls, or exact
+//              (its stick <-> slip located and restarted by eigen/moreau_jean_events.hpp, the walls still captured:
+//              the mixed treatment); c_b is a linear damper at N.
 // The closed forms of A&S sec. 4 come with it: break-off torque (eq 27), minimum torque (eq 30), the twist at the
 // top drive (eq 29 at x = 0), build-up time (eq 34) and period estimate (eq 40) with the string's fundamental
 // period (the continuous string's lowest mode, top held, by transfer matrices).
@@ -129,6 +131,9 @@ struct TorsionalStringRun {
 /// lumped element whose switches are located exactly (solve/moreau_jean_events.hpp).
 enum class BitTreatment { captured, exact };
 
+/// The earlier run interface (TorsionalString::simulate(run)), kept as a thin wrapper over simulate(): its settings
+/// map to SolverOptions (method, step, theta, projection_band, interrupt) and to the model's (bit treatment,
+/// switch tolerance, slow speed).
 struct TorsionalStringRunOptions {
     double t_end = 60.0;
     double step = 1e-3;            ///< h, s; the output interval and a sampled PI's period are multiples of it
