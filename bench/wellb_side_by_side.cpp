@@ -2,10 +2,11 @@
 // of bench/wellb_side_by_side.py, which alternates it with bench/reference/aarsnes_shor.c (the published explicit
 // scheme in plain C) and frictionsim from Python. Not a Google Benchmark: one process per round, as the C program.
 //
-// Usage: wellb_side_by_side [--elements N] [--step H] [--t-end S] [--repeat R] [--trace FILE]
-// prints one line of JSON with the same keys as aarsnes_shor.c: cpu_seconds is the best CPU time of R runs of
-// TorsionalString::simulate (the string, its survey lookups and the node bounds built once before, as a user
-// builds a model once), bit_peak / period the limit cycle's means over the cycles starting after 15 s (a cycle
+// Usage: wellb_side_by_side [--elements N] [--step H] [--t-end S] [--repeat R] [--trace FILE] [--entry E]
+// prints one line of JSON with the same keys as aarsnes_shor.c: cpu_seconds is the best CPU time of R runs (the
+// string, its survey lookups and the node bounds built once before, as a user builds a model once) through
+// --entry simulate (default: frictionsim::simulate with Method::moreau_jean, outputs every 0.01 s, what Python's
+// fs.simulate runs) or run (TorsionalString::simulate, the model's own loop); bit_peak / period the limit cycle's means over the cycles starting after 15 s (a cycle
 // starts when the bit passes 5 rad/s after resting below 0.5 rad/s; outputs every 0.01 s), the motor torque's
 // extremes and the mean fraction of nodes in A&S's 1.5 rad/s band over the same window.
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <ctime>
 #include <limits>
 
+#include <frictionsim/simulate.hpp>
 #include <frictionsim/string/torsional_string.hpp>
 
 namespace {
@@ -27,7 +29,8 @@ double cpu_seconds() {
 }
 
 [[noreturn]] void usage() {
-    std::fprintf(stderr, "usage: wellb_side_by_side [--elements N] [--step H] [--t-end S] [--repeat R] [--trace FILE]\n");
+    std::fprintf(stderr, "usage: wellb_side_by_side [--elements N] [--step H] [--t-end S] [--repeat R] [--trace FILE] "
+                         "[--entry simulate|run]\n");
     std::exit(2);
 }
 
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
     double step = 2e-3, t_end = 60.0;
     int repeat = 1;
     const char* trace = nullptr;
+    bool through_simulate = true;
     for (int a = 1; a < argc; ++a) {
         if (a + 1 >= argc) usage();
         if (!std::strcmp(argv[a], "--elements")) elements = static_cast<std::size_t>(std::atol(argv[++a]));
@@ -46,6 +50,11 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[a], "--t-end")) t_end = std::atof(argv[++a]);
         else if (!std::strcmp(argv[a], "--repeat")) repeat = std::atoi(argv[++a]);
         else if (!std::strcmp(argv[a], "--trace")) trace = argv[++a];
+        else if (!std::strcmp(argv[a], "--entry")) {
+            const char* e = argv[++a];
+            if (std::strcmp(e, "simulate") && std::strcmp(e, "run")) usage();
+            through_simulate = !std::strcmp(e, "simulate");
+        }
         else usage();
     }
     if (repeat < 1) usage();
@@ -56,12 +65,34 @@ int main(int argc, char** argv) {
     o.t_end = t_end;
     o.step = step;
     o.slow_speed = 1.5;  // the stuck fraction counted in A&S's band, as the C program counts it
+    SolverOptions so;
+    so.method = Method::moreau_jean;
+    so.step = step;
+    for (long k = 0; k <= std::lround(t_end / 0.01); ++k) so.output_times.push_back(0.01 * static_cast<double>(k));
     TorsionalStringRun r;
+    long steps = 0;
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < repeat; ++k) {
         const double start = cpu_seconds();
-        r = string.simulate(o);
-        best = std::min(best, cpu_seconds() - start);
+        if (through_simulate) {
+            const Result res = simulate(string, t_end, so);
+            best = std::min(best, cpu_seconds() - start);
+            r = TorsionalStringRun{};
+            r.time = res.t;
+            for (const char* name : {"bit_speed", "top_drive_speed", "motor_torque", "stuck_fraction"}) {
+                const std::size_t c = res.column(name);
+                std::vector<double>& out = name[0] == 'b'   ? r.bit_speed
+                                           : name[0] == 't' ? r.top_drive_speed
+                                           : name[0] == 'm' ? r.motor_torque
+                                                            : r.stuck_fraction;
+                for (std::size_t i = 0; i < res.t.size(); ++i) out.push_back(res.state(i, c));
+            }
+            steps = res.stats.steps;
+        } else {
+            r = string.simulate(o);
+            best = std::min(best, cpu_seconds() - start);
+            steps = r.statistics.steps;
+        }
     }
 
     double peak = 0.0, period = 0.0, tmax = -HUGE_VAL, tmin = HUGE_VAL, stuck = 0.0;
@@ -100,10 +131,9 @@ int main(int argc, char** argv) {
     }
     std::printf("{\"elements\": %zu, \"step\": %.17g, \"t_end\": %.17g, \"cpu_seconds\": %.9g, \"bit_peak\": %.17g, "
                 "\"period\": %.17g, \"cycles\": %d, \"max_motor_torque\": %.17g, \"min_motor_torque\": %.17g, "
-                "\"stuck_fraction\": %.17g, \"steps\": %ld, \"solves\": %ld, \"factorisations\": %ld, "
-                "\"switches\": %ld}\n",
+                "\"stuck_fraction\": %.17g, \"steps\": %ld, \"entry\": \"%s\"}\n",
                 elements, step, t_end, best, cycles ? peak / cycles : 0.0, cycles ? period / cycles : 0.0, cycles,
-                window ? tmax : 0.0, window ? tmin : 0.0, window ? stuck / window : 0.0, r.statistics.steps,
-                r.statistics.solves, r.statistics.factorisations, r.statistics.contact_switches);
+                window ? tmax : 0.0, window ? tmin : 0.0, window ? stuck / window : 0.0, steps,
+                through_simulate ? "simulate" : "run");
     return 0;
 }
