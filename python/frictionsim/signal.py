@@ -45,9 +45,9 @@ def _reject(owner: str, parameter: str, rule: str, value: object) -> None:
 
 def _finite(owner: str, x: np.ndarray, **results) -> None:
     """NaN or inf never leaves: x was finite, so its magnitudes overflowed (the fits' rule, named x)."""
-    from .fit.quality import _require_finite  # deferred: the fit package imports this module
+    from .fit.quality import require_finite  # deferred: the fit package imports this module
 
-    _require_finite(owner, results, {"x": x})
+    require_finite(owner, results, {"x": x})
 
 
 def _samples(owner: str, t, x, *, min_samples: int = 2) -> Tuple[np.ndarray, np.ndarray]:
@@ -73,7 +73,7 @@ def _samples(owner: str, t, x, *, min_samples: int = 2) -> Tuple[np.ndarray, np.
     return t, x
 
 
-def _sampling_rate(owner: str, t: np.ndarray, rtol: float) -> float:
+def sampling_rate(owner: str, t: np.ndarray, rtol: float) -> float:
     """Sampling rate f_s = 1/dt [Hz] of uniformly sampled times.
 
     EMD (index-based extrema) and the FFT assume equal spacing, so a record from an adaptive-step solver must
@@ -223,7 +223,7 @@ def emd(t, x, *, max_imfs: Optional[int] = None, sd_threshold: float = 0.3, spli
 
     owner = "emd"
     t, x = _samples(owner, t, x, min_samples=4)
-    fs = _sampling_rate(owner, t, uniform_rtol)
+    fs = sampling_rate(owner, t, uniform_rtol)
     if max_imfs is not None and not (isinstance(max_imfs, (int, np.integer)) and max_imfs >= 1):
         _reject(owner, "max_imfs", "None or an integer >= 1", max_imfs)
     if not (sd_threshold > 0.0 and math.isfinite(sd_threshold)):
@@ -275,7 +275,7 @@ def spectrum(t, x, *, method: str = "periodogram", scaling: str = "amplitude", w
     """
     owner = "spectrum"
     t, x = _samples(owner, t, x, min_samples=4)
-    fs = _sampling_rate(owner, t, uniform_rtol)
+    fs = sampling_rate(owner, t, uniform_rtol)
     if scaling not in ("amplitude", "psd"):
         _reject(owner, "scaling", '"amplitude" or "psd"', repr(scaling))
     scipy_scaling = "spectrum" if scaling == "amplitude" else "density"
@@ -317,7 +317,7 @@ def dominant_frequency(t, x, *, fmin: Optional[float] = None, fmax: Optional[flo
     """
     owner = "dominant_frequency"
     t, x = _samples(owner, t, x, min_samples=4)
-    fs = _sampling_rate(owner, t, uniform_rtol)
+    fs = sampling_rate(owner, t, uniform_rtol)
     if not (isinstance(zero_pad, (int, np.integer)) and zero_pad >= 1):
         _reject(owner, "zero_pad", "an integer >= 1", zero_pad)
     if detrend not in ("constant", "linear", "none"):

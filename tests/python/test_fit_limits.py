@@ -125,10 +125,10 @@ def test_too_few_samples_are_named(force, samples, monkeypatch):
 # ----------------------------------------------------------------- the one check every identification result passes
 def _inject(field, value):
     """Wrap the fitting core so that its answer carries ``value`` in ``field`` (the first fitted parameter's)."""
-    from frictionsim.fit.solver import _fit
+    from frictionsim.fit.solver import fit_model
 
     def wrapped(*args, **kwargs):
-        answer = _fit(*args, **kwargs)
+        answer = fit_model(*args, **kwargs)
         name = answer.fitted[0]
         if field == "params":
             return dataclasses.replace(answer, params={**answer.params, name: value})
@@ -145,7 +145,7 @@ def _inject(field, value):
                                           ("stderr", math.inf), ("signal", math.nan)])
 @pytest.mark.parametrize("module", [kinematic, rig])
 def test_no_identification_reports_success_with_a_non_finite_field(force, module, field, value, monkeypatch):
-    monkeypatch.setattr(module, "_fit", _inject(field, value))
+    monkeypatch.setattr(module, "fit_model", _inject(field, value))
     if module is kinematic:
         result = fit.identify_dahl(T, V, force, N, fit_exponent=False)
     else:
@@ -160,14 +160,14 @@ def test_no_identification_reports_success_with_a_non_finite_field(force, module
 def test_an_undetermined_parameter_keeps_its_infinite_standard_error_and_the_success(force, monkeypatch):
     # inf is the answer "the data do not determine it" (flagged not identifiable), not a failure: as scipy's
     # curve_fit reports an undetermined covariance as inf
-    from frictionsim.fit.solver import _fit
+    from frictionsim.fit.solver import fit_model
 
     def undetermined(*args, **kwargs):
-        answer = _fit(*args, **kwargs)
+        answer = fit_model(*args, **kwargs)
         name = answer.fitted[0]
         return dataclasses.replace(answer, stderr={**answer.stderr, name: math.inf},
                                    identifiable={**answer.identifiable, name: False})
 
-    monkeypatch.setattr(kinematic, "_fit", undetermined)
+    monkeypatch.setattr(kinematic, "fit_model", undetermined)
     result = fit.identify_dahl(T, V, force, N, fit_exponent=False)
     assert result.success and math.isinf(result.stderr["mu"]) and not result.identifiable["mu"]

@@ -15,10 +15,10 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from ..validation import reject
 from .kinematic import identify
-from .parameters import _law_def
+from .parameters import law_def
 from .result import IdentificationResult
-from .validation import _reject
 
 __all__ = ["compare_laws"]
 
@@ -35,8 +35,8 @@ def _column(data: Any, name: str, required: bool = True) -> Any:
         if key in data:
             return np.asarray(data[key], dtype=float)
     if required:
-        _reject(f"data must have a column {name} (or {' / '.join(_COLUMNS[name][1:])}); it has "
-                f"{', '.join(map(str, data.keys()))}", "data")
+        reject(f"data must have a column {name} (or {' / '.join(_COLUMNS[name][1:])}); it has "
+               f"{', '.join(map(str, data.keys()))}", "data")
     return None
 
 
@@ -44,22 +44,22 @@ def _record(data: Any, normal_force: Any) -> Tuple[Any, Any, Any, Any]:
     """-> (t, v_r, F, N) from a table (DataFrame or mapping of columns) or a (t, v_r, F[, N]) tuple."""
     if isinstance(data, (tuple, list)):
         if len(data) not in (3, 4):
-            _reject(f"data as a sequence must be (t, relative_velocity, friction_force[, normal_force]) (got "
-                    f"{len(data)} items)", "data")
+            reject(f"data as a sequence must be (t, relative_velocity, friction_force[, normal_force]) (got "
+                   f"{len(data)} items)", "data")
         t, v, force = data[:3]
         n = data[3] if len(data) == 4 else None
     elif hasattr(data, "keys") and hasattr(data, "__getitem__"):
         t, v, force = (_column(data, name) for name in ("t", "relative_velocity", "friction_force"))
         n = _column(data, "normal_force", required=False)
     else:
-        _reject(f"data must be a DataFrame or mapping with columns t, relative_velocity, friction_force[, "
-                f"normal_force], or a (t, v_r, F[, N]) tuple (got {type(data).__name__})", "data")
+        reject(f"data must be a DataFrame or mapping with columns t, relative_velocity, friction_force[, "
+               f"normal_force], or a (t, v_r, F[, N]) tuple (got {type(data).__name__})", "data")
     if normal_force is not None:
         if n is not None:
-            _reject("normal_force is given both in data and as the normal_force argument", "normal_force")
+            reject("normal_force is given both in data and as the normal_force argument", "normal_force")
         n = normal_force
     if n is None:
-        _reject("normal_force is required: a column of data or the normal_force argument [N]", "normal_force")
+        reject("normal_force is required: a column of data or the normal_force argument [N]", "normal_force")
     return t, v, force, n
 
 
@@ -111,17 +111,17 @@ def compare_laws(data: Any, laws: Union[str, Sequence[Any]] = DEFAULT_LAWS, *, n
         laws = (laws,)
     laws = list(laws)
     if not laws:
-        _reject("laws must name at least one law", "laws")
-    keys = [_law_def(law).key for law in laws]
+        reject("laws must name at least one law", "laws")
+    keys = [law_def(law).key for law in laws]
     duplicated = sorted({k for k in keys if keys.count(k) > 1})
     if duplicated:
-        _reject(f"laws names {', '.join(duplicated)} more than once", "laws")
+        reject(f"laws names {', '.join(duplicated)} more than once", "laws")
     per_law: Dict[str, Mapping[str, Any]] = {}
     for key, value in (law_options or {}).items():
-        canonical = _law_def(key).key
+        canonical = law_def(key).key
         if canonical not in keys:
-            _reject(f"law_options[{key!r}]: {key} is not among the laws compared ({', '.join(keys)})",
-                    f"law_options[{key!r}]")
+            reject(f"law_options[{key!r}]: {key} is not among the laws compared ({', '.join(keys)})",
+                   f"law_options[{key!r}]")
         per_law[canonical] = value
     t, v, force, n = _record(data, normal_force)
 

@@ -12,7 +12,7 @@ import numpy as np
 from .._core import SolverOptions
 from ..errors import SimulationError
 from ..simulation import simulate
-from .validation import _reject
+from ..validation import reject
 
 #: Steps allowed per run: max(_STEP_CAP, _STEPS_PER_SAMPLE * samples). A Dormand-Prince run that needs more is
 #: stiff (Dahl with a large k_t relaxes at k_t |v_r| / (mu N), far faster than the record) and is redone with
@@ -22,24 +22,24 @@ _STEP_CAP = 20_000
 _STEPS_PER_SAMPLE = 50
 
 
-def _simulate_kwargs(simulate_options: Optional[Mapping[str, Any]], rtol: float,
-                     atol: Optional[float]) -> Dict[str, Any]:
+def simulate_kwargs(simulate_options: Optional[Mapping[str, Any]], rtol: float,
+                    atol: Optional[float]) -> Dict[str, Any]:
     """The user's simulate options, checked; the output times, time span and tolerances are the fit's."""
     for name, value in (("rtol", rtol), ("atol", atol)):
         if value is None and name == "atol":
             continue
         if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            _reject(f"{name} must be positive and finite (got {value!r})", name)
+            reject(f"{name} must be positive and finite (got {value!r})", name)
     sim_kwargs = dict(simulate_options or {})
     for reserved in ("output_times", "t_start", "t_end", "rtol", "atol"):
         if reserved in sim_kwargs:
-            _reject(f"simulate_options[{reserved!r}] is set by the fit (use the rtol= / atol= arguments for "
-                    f"the tolerances)", f"simulate_options[{reserved!r}]")
+            reject(f"simulate_options[{reserved!r}] is set by the fit (use the rtol= / atol= arguments for "
+                   f"the tolerances)", f"simulate_options[{reserved!r}]")
     sim_kwargs.update(rtol=float(rtol))
     return sim_kwargs
 
 
-def _force_atol(atol: Optional[float], measured: np.ndarray) -> float:
+def default_force_atol(atol: Optional[float], measured: np.ndarray) -> float:
     """Absolute tolerance on the fitted force [N]: given, or 1e-6 of the record's largest force."""
     if atol is not None:
         return float(atol)
@@ -72,8 +72,8 @@ def _atol_per_state(names: Sequence[str], force_atol: float, *, law_stiffness: f
     return [max(atol, SolverOptions.min_atol) for atol in out]
 
 
-def _with_state_atol(sim_kwargs: Mapping[str, Any], names: Sequence[str], force_atol: float,
-                     **scales: float) -> Dict[str, Any]:
+def with_state_atol(sim_kwargs: Mapping[str, Any], names: Sequence[str], force_atol: float,
+                    **scales: float) -> Dict[str, Any]:
     """``sim_kwargs`` with :func:`_atol_per_state`, unless the user set per-state tolerances."""
     kwargs = dict(sim_kwargs)
     if "atol_per_state" not in kwargs:
@@ -81,7 +81,7 @@ def _with_state_atol(sim_kwargs: Mapping[str, Any], names: Sequence[str], force_
     return kwargs
 
 
-def _simulate(rig: Any, t: np.ndarray, sim_kwargs: Mapping[str, Any]):
+def simulate_at_samples(rig: Any, t: np.ndarray, sim_kwargs: Mapping[str, Any]):
     """One run recorded at the samples ``t``.
 
     Unless the caller chose the integrator or the step limit, a run that needs more than the step cap (see

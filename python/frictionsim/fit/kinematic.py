@@ -23,17 +23,18 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from .._core import KinematicRig
-from .forward_model import _force_atol, _simulate, _simulate_kwargs, _with_state_atol
-from .parameters import _INITIAL_FORCE, _law_def, _LawDef, _Param
-from .result import IdentificationResult, _result
-from .search_space import Bounds, _build_spec, _resolve_excess, _user_bounds, _user_values
-from .solver import _fit, _fit_setup
-from .validation import _normal_force, _record, _reject, _summable, _varying, _vector, _weights
+from ..validation import reject
+from .forward_model import default_force_atol, simulate_at_samples, simulate_kwargs, with_state_atol
+from .parameters import INITIAL_FORCE, law_def, LawDef, Param
+from .result import identification_result, IdentificationResult
+from .search_space import Bounds, build_search_space, resolve_excess, user_bounds, user_values
+from .solver import fit_model, fit_setup
+from .validation import checked_normal_force, checked_record, finite_vector, residual_weights, summable, varying
 
 __all__ = ["identify", "identify_dahl", "identify_lugre", "identify_elasto_plastic", "identify_stribeck"]
 
 
-def _data_guess(lawdef: _LawDef, v: np.ndarray, force: np.ndarray, n_abs: np.ndarray) -> Dict[str, float]:
+def _data_guess(lawdef: LawDef, v: np.ndarray, force: np.ndarray, n_abs: np.ndarray) -> Dict[str, float]:
     """Starting values from the record (refined by a coarse scan and least_squares).
 
     Dahl: mu from the saturated plateau of |F| / N. Laws with a Stribeck curve (a static coefficient: Stribeck,
@@ -67,31 +68,31 @@ def _data_guess(lawdef: _LawDef, v: np.ndarray, force: np.ndarray, n_abs: np.nda
     return guess
 
 
-def _initial_state_choice(lawdef: _LawDef, initial_state: Union[str, float, Sequence[float]],
-                          force_scale: float) -> Tuple[Dict[str, _Param], Optional[List[float]]]:
+def _initial_state_choice(lawdef: LawDef, initial_state: Union[str, float, Sequence[float]],
+                          force_scale: float) -> Tuple[Dict[str, Param], Optional[List[float]]]:
     """-> (extra fit variables, fixed law state): "fit" adds F_0 [N] as a fit variable (a force, not the law
     state, so its scale does not depend on the stiffness being fitted); "zero" or a given state fixes it;
     "measured" (None, None) derives it from the first sample at each run."""
-    extra: Dict[str, _Param] = {}
+    extra: Dict[str, Param] = {}
     fixed_state: Optional[List[float]] = None
     if isinstance(initial_state, str):
         if initial_state not in ("measured", "fit", "zero"):
-            _reject(f"initial_state must be 'measured', 'fit', 'zero' or the law state (got {initial_state!r})",
-                    "initial_state")
+            reject(f"initial_state must be 'measured', 'fit', 'zero' or the law state (got {initial_state!r})",
+                   "initial_state")
         if lawdef.state_count == 0 and initial_state == "fit":
-            _reject(f"initial_state='fit': {lawdef.name} has no internal state", "initial_state")
+            reject(f"initial_state='fit': {lawdef.name} has no internal state", "initial_state")
         if initial_state == "fit" and not lawdef.inverts_force:
-            _reject(f"initial_state='fit': the friction force does not determine {lawdef.name}'s state; give "
-                    f"'zero' or the state", "initial_state")
+            reject(f"initial_state='fit': the friction force does not determine {lawdef.name}'s state; give "
+                   f"'zero' or the state", "initial_state")
         if initial_state == "fit":
-            extra[_INITIAL_FORCE] = _Param(_INITIAL_FORCE, "F_0", "N", (-2.0 * force_scale, 2.0 * force_scale),
-                                           minimum=-math.inf, strict=False)
+            extra[INITIAL_FORCE] = Param(INITIAL_FORCE, "F_0", "N", (-2.0 * force_scale, 2.0 * force_scale),
+                                         minimum=-math.inf, strict=False)
         elif initial_state == "zero" and lawdef.state_count:
             fixed_state = [0.0] * lawdef.state_count
     else:
         if lawdef.state_count == 0:
-            _reject(f"initial_state: {lawdef.name} has no internal state", "initial_state")
-        fixed_state = list(_vector("initial_state", np.atleast_1d(initial_state), lawdef.state_count))
+            reject(f"initial_state: {lawdef.name} has no internal state", "initial_state")
+        fixed_state = list(finite_vector("initial_state", np.atleast_1d(initial_state), lawdef.state_count))
     return extra, fixed_state
 
 
@@ -104,29 +105,29 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
                         simulate_options: Optional[Mapping[str, Any]] = None,
                         **solver_options: Any) -> IdentificationResult:
     started = time.perf_counter()
-    lawdef, method, opts = _fit_setup(law, method, solver_options)
-    t, v = _record(t, relative_velocity, "relative_velocity")
-    force = _vector("friction_force", friction_force, t.size)
-    _summable("friction_force", _varying("friction_force", force))
-    n_arg, n0 = _normal_force(normal_force, t)
+    lawdef, method, opts = fit_setup(law, method, solver_options)
+    t, v = checked_record(t, relative_velocity, "relative_velocity")
+    force = finite_vector("friction_force", friction_force, t.size)
+    summable("friction_force", varying("friction_force", force))
+    n_arg, n0 = checked_normal_force(normal_force, t)
     n_samples = np.full(t.size, n_arg) if isinstance(n_arg, float) else np.interp(t, n_arg[0], n_arg[1])
-    w = _weights(weights, t.size)
-    sim_kwargs = _simulate_kwargs(simulate_options, rtol, atol)
+    w = residual_weights(weights, t.size)
+    sim_kwargs = simulate_kwargs(simulate_options, rtol, atol)
     force_scale = float(np.max(np.abs(force))) or 1.0
     extra, fixed_state = _initial_state_choice(lawdef, initial_state, force_scale)
 
-    all_bounds = _user_bounds(lawdef, bounds, extra, force_scale, float(np.max(np.abs(v))) or 1.0)
-    user_guess = _user_values(lawdef, initial_guess, "initial_guess", tuple(extra))
-    user_fixed = _user_values(lawdef, fixed, "fixed")
-    _resolve_excess(lawdef, user_guess, "initial_guess", user_fixed)
-    _resolve_excess(lawdef, user_fixed, "fixed")
+    all_bounds = user_bounds(lawdef, bounds, extra, force_scale, float(np.max(np.abs(v))) or 1.0)
+    user_guess = user_values(lawdef, initial_guess, "initial_guess", tuple(extra))
+    user_fixed = user_values(lawdef, fixed, "fixed")
+    resolve_excess(lawdef, user_guess, "initial_guess", user_fixed)
+    resolve_excess(lawdef, user_fixed, "fixed")
     for name in user_fixed:
         if name in user_guess:
-            _reject(f"{name} is both fixed and given an initial guess", f"fixed[{name!r}]")
+            reject(f"{name} is both fixed and given an initial guess", f"fixed[{name!r}]")
 
     guess = _data_guess(lawdef, v, force, n_samples)
-    if _INITIAL_FORCE in extra:
-        guess[_INITIAL_FORCE] = float(force[0])
+    if INITIAL_FORCE in extra:
+        guess[INITIAL_FORCE] = float(force[0])
     guess.update(user_guess)
     fitted_names: List[str] = []
     fixed_values: Dict[str, float] = {}
@@ -140,9 +141,9 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
         else:
             fitted_names.append(p.name)
     if len(fitted_names) >= t.size:
-        _reject(f"t: {t.size} samples cannot determine {len(fitted_names)} parameters", "t")
-    floors = {_INITIAL_FORCE: force_scale}  # F_0 may be ~0: its relative error is taken against max|F|
-    spec = _build_spec(lawdef, fitted_names, guess, fixed_values, all_bounds, extra, floors, user_guess)
+        reject(f"t: {t.size} samples cannot determine {len(fitted_names)} parameters", "t")
+    floors = {INITIAL_FORCE: force_scale}  # F_0 may be ~0: its relative error is taken against max|F|
+    spec = build_search_space(lawdef, fitted_names, guess, fixed_values, all_bounds, extra, floors, user_guess)
     scan_names = lawdef.scan_order([p.name for p in lawdef.params
                                     if p.scan and p.name in fitted_names and p.name not in user_guess])
 
@@ -154,46 +155,47 @@ def _identify_kinematic(law: Any, t: Any, relative_velocity: Any, friction_force
             if fixed_state is not None:
                 state = fixed_state
             else:
-                f0 = q[_INITIAL_FORCE] if _INITIAL_FORCE in q else float(force[0])
+                f0 = q[INITIAL_FORCE] if INITIAL_FORCE in q else float(force[0])
                 state = lawdef.state_from_force(physical, f0, float(v[0]), n0)
         return KinematicRig(law_obj, relative_velocity=(t, v), normal_force=n_arg, initial_state=state), state
 
-    force_atol = _force_atol(atol, force)
+    force_atol = default_force_atol(atol, force)
     duration, v_max = float(t[-1] - t[0]), float(np.max(np.abs(v))) or 1.0
 
     def model(q: Mapping[str, float]) -> np.ndarray:
         rig, _ = rig_for(q)
-        kwargs = _with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=v_max,
-                                  law_stiffness=lawdef.state_stiffness(lawdef.physical(q)))
-        return _simulate(rig, t, kwargs).friction_force
+        kwargs = with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=v_max,
+                                 law_stiffness=lawdef.state_stiffness(lawdef.physical(q)))
+        return simulate_at_samples(rig, t, kwargs).friction_force
 
-    fit = _fit(model, force, w, spec, method=method, opts=opts, scan_names=scan_names,
-               x0_given=bool(user_guess))
+    fit = fit_model(model, force, w, spec, method=method, opts=opts, scan_names=scan_names,
+                    x0_given=bool(user_guess))
     rig, state = rig_for(fit.q)
     physical = lawdef.physical(fit.q)
 
     def forward(t_new: Any, v_new: Any, n_new: Any, state_new: Any) -> np.ndarray:
         """The fitted law on the kinematic rig for new inputs, run as every residual of the fit was."""
         if v_new is None:
-            _reject("eval on the kinematic rig needs relative_velocity at t", "relative_velocity")
-        t_new, v_new = _record(t_new, v_new, "relative_velocity")
-        n_new, _ = _normal_force(n_arg if n_new is None else n_new, t_new)
+            reject("eval on the kinematic rig needs relative_velocity at t", "relative_velocity")
+        t_new, v_new = checked_record(t_new, v_new, "relative_velocity")
+        n_new, _ = checked_normal_force(n_arg if n_new is None else n_new, t_new)
         if isinstance(state_new, str) and state_new == "zero":
             state_new = [0.0] * lawdef.state_count if lawdef.state_count else None
         elif state_new is None:
             state_new = state
         elif lawdef.state_count == 0:
-            _reject(f"initial_state: {lawdef.name} has no internal state", "initial_state")
+            reject(f"initial_state: {lawdef.name} has no internal state", "initial_state")
         else:
-            state_new = list(_vector("initial_state", np.atleast_1d(state_new), lawdef.state_count))
+            state_new = list(finite_vector("initial_state", np.atleast_1d(state_new), lawdef.state_count))
         rig_new = KinematicRig(lawdef.build(physical), relative_velocity=(t_new, v_new), normal_force=n_new,
                                initial_state=state_new)
-        kwargs = _with_state_atol(sim_kwargs, rig_new.state_names, force_atol, duration=duration, speed=v_max,
-                                  law_stiffness=lawdef.state_stiffness(physical))
-        return np.asarray(_simulate(rig_new, t_new, kwargs).friction_force)
+        kwargs = with_state_atol(sim_kwargs, rig_new.state_names, force_atol, duration=duration, speed=v_max,
+                                 law_stiffness=lawdef.state_stiffness(physical))
+        return np.asarray(simulate_at_samples(rig_new, t_new, kwargs).friction_force)
 
-    return _result(fit, lawdef, method=method, experiment="kinematic rig", signal_name="friction_force", t=t,
-                   measured=force, rig=rig, initial_state=state, started=started, weights=w, forward=forward)
+    return identification_result(fit, lawdef, method=method, experiment="kinematic rig",
+                                 signal_name="friction_force", t=t, measured=force, rig=rig, initial_state=state,
+                                 started=started, weights=w, forward=forward)
 
 
 _COMMON_DOC = """
@@ -360,7 +362,7 @@ def identify(law: Any, t: Any, relative_velocity: Any, friction_force: Any, norm
     Dispatches to :func:`identify_dahl`, :func:`identify_lugre`, :func:`identify_elasto_plastic` or
     :func:`identify_stribeck` where the law has one; any other law takes the common keywords below.
     """
-    lawdef = _law_def(law)
+    lawdef = law_def(law)
     function = _FUNCTIONS.get(lawdef.key)
     if function is None:
         return _identify_kinematic(lawdef.key, t, relative_velocity, friction_force, normal_force, **kwargs)

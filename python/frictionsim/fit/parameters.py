@@ -8,7 +8,7 @@ value (:func:`_generic_bounds`), so a new law's parameters are fittable without 
 
 A parameter bounded below by another (``at_least``: mu_static >= mu) is fitted as ``<name>_excess`` = value - other
 >= 0 (a box bound, which the searches handle, instead of a linear constraint, which they do not);
-:meth:`_LawDef.physical` maps it back.
+:meth:`LawDef.physical` maps it back.
 """
 
 from __future__ import annotations
@@ -19,17 +19,17 @@ from typing import Any, Callable, Dict, FrozenSet, List, Mapping, Optional, Sequ
 
 from ..errors import InvalidParameterError
 from ..laws import law_classes
-from .validation import _reject
+from ..validation import reject
 
 
 @dataclass(frozen=True)
-class _Param:
+class Param:
     """A fit variable: a law keyword (mu, tangential_stiffness, ...) or a derived one (mu_static_excess)."""
 
     name: str
     symbol: str
     unit: str
-    bounds: Tuple[float, float]  # default search bounds; upper NaN: from the data (see search_space._user_bounds)
+    bounds: Tuple[float, float]  # default search bounds; upper NaN: from the data (see search_space.user_bounds)
     minimum: float = 0.0  # validity: > minimum (strict) or >= minimum
     strict: bool = True
     maximum: float = math.inf  # validity: < maximum (strict_max) or <= maximum
@@ -116,27 +116,27 @@ def _aliases(record: Any, hint: _Hint) -> Tuple[str, ...]:
     return tuple(out)
 
 
-def _fit_param(record: Any, base: Optional[_Param], tied: bool) -> _Param:
+def _fit_param(record: Any, base: Optional[Param], tied: bool) -> Param:
     """The fit variable of one ``Law.parameters`` record; ``base`` is the fit variable of the parameter bounding it
     from below (``at_least``), when there is one: it is then fitted as the non-negative excess over that one."""
     if base is not None:
         default = None if record.default is None or base.default is None else record.default - base.default
         start = record.example - base.start if base.start is not None else math.nan
-        return _Param(f"{record.name}_excess", f"{record.symbol} - {base.symbol}", record.unit,
-                      (0.0, base.bounds[1]), strict=False, default=default,
-                      start=start if math.isfinite(start) and start >= 0.0 else None)
+        return Param(f"{record.name}_excess", f"{record.symbol} - {base.symbol}", record.unit,
+                     (0.0, base.bounds[1]), strict=False, default=default,
+                     start=start if math.isfinite(start) and start >= 0.0 else None)
     hint = _HINTS.get(record.name, _Hint())
     start = hint.start if hint.start is not None else (record.example if math.isfinite(record.example) else None)
-    return _Param(record.name, record.symbol, record.unit, hint.bounds or _generic_bounds(record),
-                  minimum=record.lower, strict=record.lower_open, maximum=record.upper,
-                  strict_max=record.upper_open, aliases=_aliases(record, hint), scan=hint.scan,
-                  default=record.default, start=start, tied=tied)
+    return Param(record.name, record.symbol, record.unit, hint.bounds or _generic_bounds(record),
+                 minimum=record.lower, strict=record.lower_open, maximum=record.upper,
+                 strict_max=record.upper_open, aliases=_aliases(record, hint), scan=hint.scan,
+                 default=record.default, start=start, tied=tied)
 
 
 def _nudged(record: Any) -> float:
     """The example moved by 0.1 %, inside the record's interval."""
-    rule = _Param(record.name, record.symbol, record.unit, (record.lower, record.upper), minimum=record.lower,
-                  strict=record.lower_open, maximum=record.upper, strict_max=record.upper_open)
+    rule = Param(record.name, record.symbol, record.unit, (record.lower, record.upper), minimum=record.lower,
+                 strict=record.lower_open, maximum=record.upper, strict_max=record.upper_open)
     for value in (record.example * (1.0 - 1e-3), record.example * (1.0 + 1e-3)):
         if rule.admits(value):
             return value
@@ -161,17 +161,17 @@ def tied_parameters(law: type) -> FrozenSet[str]:
 
 
 @dataclass(frozen=True)
-class _LawDef:
+class LawDef:
     key: str
     name: str
     cls: type
-    params: Tuple[_Param, ...]
+    params: Tuple[Param, ...]
     physical_names: Tuple[str, ...]  # keywords of the law's constructor that the fit sets, in order
     state_count: int
     symbols: Mapping[str, Tuple[str, str]]  # symbol, unit of every reported parameter
     excess: Mapping[str, Tuple[str, str]] = field(default_factory=dict)  # keyword -> (fit variable, lower bound)
 
-    def param(self, name: str) -> _Param:
+    def param(self, name: str) -> Param:
         for p in self.params:
             if p.name == name:
                 return p
@@ -220,8 +220,8 @@ class _LawDef:
     def refuse_fitting_tied(self, name: str, where: str) -> None:
         """Reject fitting ``name`` when it is tied (see tied_parameters): every run would fail."""
         if self.param(name).tied:
-            _reject(f"{where}: {name} is tied to other parameters of {self.name} by a rule across them, so it cannot "
-                    f"be fitted alone: it is held at the value given for it, else its default", where)
+            reject(f"{where}: {name} is tied to other parameters of {self.name} by a rule across them, so it cannot "
+                   f"be fitted alone: it is held at the value given for it, else its default", where)
 
     def scan_order(self, names: Sequence[str]) -> List[str]:
         """Scan order: the contact stiffnesses first, since the other scans only mean something once the force
@@ -278,13 +278,13 @@ def _identifiable(law: type) -> bool:
 
 
 #: Fit variable of the kinematic rig's initial friction force F_0 [N] (initial_state="fit").
-_INITIAL_FORCE = "initial_force"
+INITIAL_FORCE = "initial_force"
 
 
-def _law_def_of(law: type) -> _LawDef:
+def _law_def_of(law: type) -> LawDef:
     tied = tied_parameters(law)
     records = _fitted_records(law)
-    fit_params: Dict[str, _Param] = {}
+    fit_params: Dict[str, Param] = {}
     excess: Dict[str, Tuple[str, str]] = {}
     for r in records:  # the bounding keyword is listed (and validated) before the one it bounds
         base = fit_params.get(r.at_least) if r.at_least else None
@@ -293,14 +293,14 @@ def _law_def_of(law: type) -> _LawDef:
             excess[r.name] = (fit_params[r.name].name, r.at_least)
     symbols = {r.name: (r.symbol, r.unit) for r in law.parameters}
     symbols.update({p.name: (p.symbol, p.unit) for p in fit_params.values()})
-    symbols[_INITIAL_FORCE] = ("F_0", "N")
-    return _LawDef(law.key, law.__name__, law, tuple(fit_params.values()), tuple(r.name for r in records),
-                   len(law.state_names), symbols, excess)
+    symbols[INITIAL_FORCE] = ("F_0", "N")
+    return LawDef(law.key, law.__name__, law, tuple(fit_params.values()), tuple(r.name for r in records),
+                  len(law.state_names), symbols, excess)
 
 
 #: The laws identification accepts, by key, in the engine's order (every law of FRICTION_LAWS with something to
 #: fit).
-_LAWS: Dict[str, _LawDef] = {key: _law_def_of(law) for key, law in law_classes().items() if _identifiable(law)}
+_LAWS: Dict[str, LawDef] = {key: _law_def_of(law) for key, law in law_classes().items() if _identifiable(law)}
 
 #: Fit variables per law: {law: {name: (symbol, unit, default bounds)}} (bounds= and initial_guess= keys).
 #: An upper bound NaN (damping coefficients, N s/m) is set from the record: 10 max|F| / max|v_r|, a damping
@@ -311,20 +311,20 @@ _SPELLINGS = {spelling: lawdef for key, lawdef in _LAWS.items()  # elasto_plasti
               for spelling in (key.replace("_", ""), lawdef.name.lower())}
 
 
-def _law_def(law: Any) -> _LawDef:
+def law_def(law: Any) -> LawDef:
     key = str(law.key if isinstance(law, type) and law in law_classes().values() else law)
     key = key.lower().replace("-", "").replace("_", "")
     if key not in _SPELLINGS:
-        _reject(f"law must be one of {', '.join(repr(k) for k in _LAWS)} (got {law!r})", "law")
+        reject(f"law must be one of {', '.join(repr(k) for k in _LAWS)} (got {law!r})", "law")
     return _SPELLINGS[key]
 
 
-def _symbol_unit(law_name: str, name: str) -> Tuple[str, str]:
+def symbol_unit(law_name: str, name: str) -> Tuple[str, str]:
     """Symbol and unit of a reported parameter of law ``law_name`` (the class name)."""
-    return _law_def(law_name).symbols.get(name, (name, ""))
+    return law_def(law_name).symbols.get(name, (name, ""))
 
 
-def _canonical(lawdef: _LawDef, key: str, where: str, extra: Sequence[str] = ()) -> str:
+def canonical_name(lawdef: LawDef, key: str, where: str, extra: Sequence[str] = ()) -> str:
     """Map a user key (name or alias) to a fit-variable name; mu_static (a keyword fitted as an excess) passes
     through for guesses/fixed."""
     for p in lawdef.params:
@@ -336,5 +336,5 @@ def _canonical(lawdef: _LawDef, key: str, where: str, extra: Sequence[str] = ())
     if key in extra:
         return key
     names = [p.name for p in lawdef.params] + list(extra)
-    _reject(f"{where}: unknown parameter {key!r} for {lawdef.name}; expected one of {', '.join(names)}",
-            f"{where}[{key!r}]")
+    reject(f"{where}: unknown parameter {key!r} for {lawdef.name}; expected one of {', '.join(names)}",
+           f"{where}[{key!r}]")

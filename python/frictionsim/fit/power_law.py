@@ -44,8 +44,9 @@ import pandas as pd
 from scipy import stats
 
 from ..errors import InvalidParameterError
-from .quality import _fit_quality, _require_finite
-from .validation import _varying
+from ..validation import require_finite
+from .quality import fit_quality
+from .validation import varying
 
 __all__ = ["PowerLawFit", "fit_power_law"]
 
@@ -127,8 +128,8 @@ class PowerLawFit:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             ratio = v_a / v_d
             mu = self.eta_prime * ratio ** self.exponent
-        _require_finite("PowerLawFit.coefficient", {"v_a / v_d": ratio, "mu_df": mu},
-                        {"velocity_amplitude": v_a, "sliding_velocity": v_d})
+        require_finite("PowerLawFit.coefficient", {"v_a / v_d": ratio, "mu_df": mu},
+                       {"velocity_amplitude": v_a, "sliding_velocity": v_d})
         return mu
 
     def to_dict(self) -> dict:
@@ -157,39 +158,39 @@ def _column(rows: pd.DataFrame, column: str, lubricant: Optional[str]) -> np.nda
     try:
         values = rows[column].to_numpy(dtype=float)
     except (TypeError, ValueError):
-        _reject(f"column {column} must hold numbers{where}")
+        reject(f"column {column} must hold numbers{where}")
     if not np.all(np.isfinite(values) & (values > 0.0)):
         bad = values[~(np.isfinite(values) & (values > 0.0))][0]
-        _reject(f"column {column} must be positive and finite to take logarithms{where}; got {bad}")
+        reject(f"column {column} must be positive and finite to take logarithms{where}; got {bad}")
     return values
 
 
-def _fit(lubricant: Optional[str], rows: pd.DataFrame) -> PowerLawFit:
+def fit_model(lubricant: Optional[str], rows: pd.DataFrame) -> PowerLawFit:
     where = "" if lubricant is None else f" of lubricant {lubricant!r}"
     if len(rows) < 3:  # through 2 points the line is exact: R^2 = 1 whatever they are, no residual to judge it
-        _reject(f"needs at least 3 runs per line, to fit one and judge it by R^2 (the runs{where} are {len(rows)})")
+        reject(f"needs at least 3 runs per line, to fit one and judge it by R^2 (the runs{where} are {len(rows)})")
     ratio, mu = _column(rows, "velocity_ratio", lubricant), _column(rows, "mu_df", lubricant)
-    _varying("fit_power_law: table column velocity_ratio", ratio, "table", where, "so the line has no slope")
-    _varying("fit_power_law: table column mu_df", mu, "table", where)
+    varying("fit_power_law: table column velocity_ratio", ratio, "table", where, "so the line has no slope")
+    varying("fit_power_law: table column mu_df", mu, "table", where)
     x, y = np.log10(ratio), np.log10(mu)
     line = stats.linregress(x, y)
     slope, intercept = float(line.slope), float(line.intercept)
     slope_se, intercept_se = float(line.stderr), float(line.intercept_stderr)
     covariance = -float(x.mean()) * slope_se ** 2  # Cov(b, c) = -mean(x) s^2 / Sxx
-    _, r_squared = _fit_quality(y, slope * x + intercept - y)
+    _, r_squared = fit_quality(y, slope * x + intercept - y)
     with np.errstate(over="ignore", invalid="ignore"):  # the finiteness rule below names what overflowed
         eta_prime = np.power(10.0, intercept)
         eta_eq15 = eta_prime * np.power(2.0 * math.pi, slope)
         eta_prime_se = math.log(10.0) * eta_prime * intercept_se
-    _require_finite("fit_power_law", {"slope": slope, "intercept": intercept, "r_squared": r_squared,
-                                      "eta_prime": eta_prime, "eta_eq15": eta_eq15, "slope_stderr": slope_se,
-                                      "intercept_stderr": intercept_se, "eta_prime_stderr": eta_prime_se},
+    require_finite("fit_power_law", {"slope": slope, "intercept": intercept, "r_squared": r_squared,
+                                     "eta_prime": eta_prime, "eta_eq15": eta_eq15, "slope_stderr": slope_se,
+                                     "intercept_stderr": intercept_se, "eta_prime_stderr": eta_prime_se},
                     {"table": np.concatenate([ratio, mu])})
     return PowerLawFit(lubricant, slope, intercept, r_squared, int(ratio.size), float(ratio.min()),
                        float(ratio.max()), slope_se, intercept_se, covariance)
 
 
-def _reject(rule: str, parameter: str = "table") -> NoReturn:
+def reject(rule: str, parameter: str = "table") -> NoReturn:
     raise InvalidParameterError(f"fit_power_law: {parameter} {rule}", parameter)
 
 
@@ -218,31 +219,31 @@ def fit_power_law(table: Optional[pd.DataFrame] = None, *,
 
         table = table4()
     if not isinstance(table, pd.DataFrame):
-        _reject(f"must be a pandas DataFrame (got {type(table).__name__})")
+        reject(f"must be a pandas DataFrame (got {type(table).__name__})")
     missing = [c for c in ("velocity_ratio", "mu_df") if c not in table.columns]
     if missing:
-        _reject(f"must have the columns velocity_ratio and mu_df (missing {', '.join(missing)})")
+        reject(f"must have the columns velocity_ratio and mu_df (missing {', '.join(missing)})")
     if table.empty:  # a pandas KeyError before
-        _reject("has no rows (a line needs at least 3 runs per lubricant)")
+        reject("has no rows (a line needs at least 3 runs per lubricant)")
     if lubricant is not None and not isinstance(lubricant, str):
-        _reject(f"must be a name such as 'dry' (got {lubricant!r})", "lubricant")
+        reject(f"must be a name such as 'dry' (got {lubricant!r})", "lubricant")
     if "lubricant" not in table.columns:
         if lubricant is not None:
-            _reject("given, but the table has no 'lubricant' column", "lubricant")
-        return _fit(None, table)
+            reject("given, but the table has no 'lubricant' column", "lubricant")
+        return fit_model(None, table)
 
     unnamed = table["lubricant"].isna()
     if unnamed.any():  # pandas' groupby would drop these runs silently
-        _reject(f"column lubricant must name every run (row {table.index[unnamed.to_numpy()][0]!r} has none)")
+        reject(f"column lubricant must name every run (row {table.index[unnamed.to_numpy()][0]!r} has none)")
     names = table["lubricant"].astype(str).str.lower()
     if lubricant is not None:
         key = lubricant.lower()
         rows = table[names == key]
         if rows.empty:
-            _reject(f"must be one of {', '.join(names.unique())} (case-insensitive; got {lubricant!r})", "lubricant")
-        return _fit(key, rows)
+            reject(f"must be one of {', '.join(names.unique())} (case-insensitive; got {lubricant!r})", "lubricant")
+        return fit_model(key, rows)
 
-    fits = [_fit(key, rows).to_dict() for key, rows in table.groupby(names, sort=False)]
+    fits = [fit_model(key, rows).to_dict() for key, rows in table.groupby(names, sort=False)]
     columns = ["lubricant", "slope", "intercept", "eta_prime", "exponent", "eta_eq15", "r_squared",
                "adjusted_r_squared", "n_runs", "velocity_ratio_min", "velocity_ratio_max", "slope_stderr",
                "intercept_stderr", "eta_prime_stderr", "eta_eq15_stderr"]

@@ -29,8 +29,8 @@ from typing import Any, Callable, Dict, Optional, Tuple
 import numpy as np
 from scipy import optimize, stats
 
-from .residuals import _Evaluator
-from .search_space import _Spec
+from .residuals import Evaluator
+from .search_space import SearchSpace
 
 logger = logging.getLogger("frictionsim")
 
@@ -41,11 +41,11 @@ _MAX_ROOT_STEPS = 30
 
 
 @dataclass
-class _Problem:
+class FitProblem:
     """What a result keeps of its fit to profile it and to evaluate the law on new inputs."""
 
-    evaluator: _Evaluator
-    spec: _Spec
+    evaluator: Evaluator
+    spec: SearchSpace
     x: np.ndarray
     x_stderr: np.ndarray
     rss: float
@@ -57,7 +57,7 @@ class _Problem:
 class _Profile:
     """RSS_p(x_i): the others re-optimised with x_i held; each solution starts the next (profiles are smooth)."""
 
-    def __init__(self, problem: _Problem, i: int) -> None:
+    def __init__(self, problem: FitProblem, i: int) -> None:
         self.p = problem
         self.i = i
         self.free = np.array([j for j in range(problem.x.size) if j != i], dtype=int)
@@ -169,22 +169,22 @@ def _end(statistic: Callable[[float], float], threshold: float, inner: float, in
     return float(x)
 
 
-def _dof(problem: _Problem) -> int:
+def _dof(problem: FitProblem) -> int:
     """m - n: the residual degrees of freedom of s^2 (at least 1, as in the standard errors)."""
     return max(problem.n_used - problem.x.size, 1)
 
 
-def _threshold(problem: _Problem, level: float) -> float:
+def _threshold(problem: FitProblem, level: float) -> float:
     """F_{1, m-n}(level) = t_{m-n}((1 + level) / 2)^2: the bound on D = tau^2 (Bates & Watts 1988, eq 6.4)."""
     return float(stats.f.ppf(level, 1, _dof(problem)))
 
 
-def _t_quantile(problem: _Problem, level: float) -> float:
+def t_quantile(problem: FitProblem, level: float) -> float:
     """t_{m-n}((1 + level) / 2): the half-width of the Wald interval in standard errors."""
     return float(stats.t.ppf(0.5 + 0.5 * level, _dof(problem)))
 
 
-def _interval(problem: _Problem, i: int, level: float) -> Dict[str, Any]:
+def profile_interval(problem: FitProblem, i: int, level: float) -> Dict[str, Any]:
     """The profile-likelihood interval of search variable ``i`` at ``level``, in the reported unit."""
     var = problem.spec.variables[i]
     s2 = problem.rss / _dof(problem)

@@ -55,11 +55,11 @@ class FitProgress:
     convergence: Optional[float] = None
 
 
-class _StopSearch(Exception):
+class StopSearch(Exception):
     """Raised inside a least-squares iteration when the callback asks to stop."""
 
 
-class _Reporter:
+class Reporter:
     """Logs each iteration of a search and calls the user's callback; ``stopped`` once the callback returned True."""
 
     def __init__(self, verbose: int, callback: Optional[Callable[[FitProgress], Any]],
@@ -96,7 +96,7 @@ def _wants_stop(answer: Any) -> bool:
 
 
 @contextlib.contextmanager
-def _verbose_logging(verbose: int) -> Iterator[None]:
+def verbose_logging(verbose: int) -> Iterator[None]:
     """While a verbose fit runs: the logger lets INFO through, and a stderr handler shows it when no handler is
     configured anywhere (an application that configured logging keeps its own handlers and format)."""
     if not verbose:

@@ -11,14 +11,14 @@ from typing import Callable, Dict, Optional, Sequence, Tuple
 import numpy as np
 
 from ..errors import InvalidParameterError, SimulationError
-from .search_space import _Spec
+from .search_space import SearchSpace
 
 
-class _Evaluator:
+class Evaluator:
     """Residual of one parameter vector = one simulation; counts runs and failures (thread-safe)."""
 
     def __init__(self, model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray,
-                 weights: Optional[np.ndarray], spec: _Spec) -> None:
+                 weights: Optional[np.ndarray], spec: SearchSpace) -> None:
         self.model = model
         self.measured = measured
         self.weights = weights

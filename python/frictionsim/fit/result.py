@@ -13,11 +13,11 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .parameters import _law_def, _LawDef, _symbol_unit
-from .profile import _interval, _Problem, _t_quantile
-from .quality import _finite_or_failed, _fit_quality, _non_finite
-from .solver import _Fit
-from .validation import _reject
+from ..validation import non_finite, reject
+from .parameters import law_def, LawDef, symbol_unit
+from .profile import FitProblem, profile_interval, t_quantile
+from .quality import finite_or_failed, fit_quality
+from .solver import FitSolution
 
 __all__ = ["IdentificationResult"]
 
@@ -117,7 +117,7 @@ class IdentificationResult:
     elapsed: float = 0.0
     weights: Optional[np.ndarray] = field(default=None, repr=False)
     n_parameters: Optional[int] = None
-    _problem: Optional[_Problem] = field(default=None, repr=False, compare=False)
+    _problem: Optional[FitProblem] = field(default=None, repr=False, compare=False)
 
     def __getstate__(self) -> Dict[str, Any]:
         # the objective (a closure over the engine's rig) does not pickle: a copied result keeps its numbers,
@@ -208,8 +208,8 @@ class IdentificationResult:
             Bad input, or a result without its model (unpickled, or built by hand).
         """
         if self._problem is None or self._problem.forward is None:
-            _reject("eval needs the fit's forward model, which a copied or unpickled IdentificationResult does "
-                    "not keep: call it on the result identify_* returned", "self")
+            reject("eval needs the fit's forward model, which a copied or unpickled IdentificationResult does "
+                   "not keep: call it on the result identify_* returned", "self")
         return self._problem.forward(t, relative_velocity, normal_force, initial_state)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
@@ -226,9 +226,9 @@ class IdentificationResult:
         -------
         matplotlib.axes.Axes
         """
-        from ..plots import _axes
+        from ..plots import axes_for
 
-        ax = _axes(ax, 7.0, 4.0)
+        ax = axes_for(ax, 7.0, 4.0)
         ax.plot(self.t, self.measured, ".", ms=2.5, color="0.6", label="measured")
         kwargs.setdefault("label", f"{self.law_name} fit (R$^2$ = {self.r_squared:.4f})")
         ax.plot(self.t, self.model, **kwargs)
@@ -275,32 +275,32 @@ class IdentificationResult:
         import pandas as pd
 
         if isinstance(level, (bool, np.bool_)) or not (isinstance(level, numbers.Real) and 0.0 < level < 1.0):
-            _reject(f"level must be a number in (0, 1) (got {level!r})", "level")
+            reject(f"level must be a number in (0, 1) (got {level!r})", "level")
         level = float(level)
         problem = self._problem
         if problem is None:
-            _reject("conf_interval needs the fit's objective, which a copied or unpickled IdentificationResult does "
-                    "not keep: call it on the result identify_* returned", "self")
+            reject("conf_interval needs the fit's objective, which a copied or unpickled IdentificationResult does "
+                   "not keep: call it on the result identify_* returned", "self")
         searched = problem.spec.names
         if names is None:
             chosen = list(searched)
         else:
             if isinstance(names, str):
                 names = [names]
-            lawdef = _law_def(self.law_name)
+            lawdef = law_def(self.law_name)
             chosen = []
             for key in names:
                 name = self._search_variable(lawdef, key, searched)
                 if name not in chosen:
                     chosen.append(name)
-        t = _t_quantile(problem, level)
+        t = t_quantile(problem, level)
         rows = []
         for name in chosen:
             i = searched.index(name)
             var = problem.spec.variables[i]
             x_i = float(problem.x[i])
             row = dict(parameter=name, value=var.q(x_i))
-            row.update(_interval(problem, i, level))
+            row.update(profile_interval(problem, i, level))
             se = float(problem.x_stderr[i]) * var.dq_dx(x_i)  # dq/dx: q for a log variable, its scale if linear
             row.update(level=level, wald_lower=row["value"] - t * se, wald_upper=row["value"] + t * se)
             rows.append(row)
@@ -308,7 +308,7 @@ class IdentificationResult:
                                            "wald_lower", "wald_upper"]).set_index("parameter")
 
     @staticmethod
-    def _search_variable(lawdef: _LawDef, key: Any, searched: Sequence[str]) -> str:
+    def _search_variable(lawdef: LawDef, key: Any, searched: Sequence[str]) -> str:
         """The search variable ``key`` (a keyword, symbol or search-variable name) stands for, or a rejection that
         lists the search variables once."""
         if isinstance(key, str):
@@ -325,8 +325,8 @@ class IdentificationResult:
             name = lawdef.excess[key][0] if key in lawdef.excess else key
             if name in searched:
                 return name
-        _reject(f"names: {key!r} is not a search variable of this fit (the search variables are "
-                f"{', '.join(searched)})", "names")
+        reject(f"names: {key!r} is not a search variable of this fit (the search variables are "
+               f"{', '.join(searched)})", "names")
 
     @property
     def residuals(self) -> np.ndarray:
@@ -356,7 +356,7 @@ class IdentificationResult:
         rel = self.relative_stderr
         rows = []
         for name, value in self.params.items():
-            symbol, unit = _symbol_unit(self.law_name, name)
+            symbol, unit = symbol_unit(self.law_name, name)
             rows.append(dict(parameter=name, value=value, stderr=self.stderr[name], relative_stderr=rel[name],
                              symbol=symbol, unit=unit, fitted=name in self.fitted,
                              identifiable=self.identifiable[name], reason=self.reasons[name]))
@@ -380,7 +380,7 @@ class IdentificationResult:
         ]
         rel = self.relative_stderr
         for name, value in self.params.items():
-            symbol, unit = _symbol_unit(self.law_name, name)
+            symbol, unit = symbol_unit(self.law_name, name)
             label = f"{name} [{unit}]"
             if name in self.fitted:
                 se = f"{self.stderr[name]:.4g}"
@@ -401,14 +401,15 @@ class IdentificationResult:
         return self.summary()
 
 
-def _result(fit: _Fit, lawdef: _LawDef, *, method: str, experiment: str, signal_name: str, t: np.ndarray,
-            measured: np.ndarray, rig: Any, initial_state: Optional[List[float]],
-            started: float, weights: Optional[np.ndarray] = None, forward: Any = None) -> IdentificationResult:
+def identification_result(fit: FitSolution, lawdef: LawDef, *, method: str, experiment: str, signal_name: str,
+                          t: np.ndarray, measured: np.ndarray, rig: Any, initial_state: Optional[List[float]],
+                          started: float, weights: Optional[np.ndarray] = None,
+                          forward: Any = None) -> IdentificationResult:
     """Package the core's fit with the law built at the solution and the fit quality (rms, R^2)."""
     law_params = {k: fit.params[k] for k in lawdef.physical_names}
-    law = None if _non_finite({"params": law_params}) else lawdef.build(law_params)
-    rms_residual, r_squared = _fit_quality(measured, fit.residual)
-    success, message = _finite_or_failed(fit.success, fit.message, {
+    law = None if non_finite({"params": law_params}) else lawdef.build(law_params)
+    rms_residual, r_squared = fit_quality(measured, fit.residual)
+    success, message = finite_or_failed(fit.success, fit.message, {
         "params": fit.params, "r_squared": r_squared, "rms_residual": rms_residual, "model": fit.signal,
         # inf marks a parameter the data do not determine (flagged not identifiable): that is an answer, not NaN
         "stderr": {k: se for k, se in fit.stderr.items() if fit.identifiable[k] or not math.isinf(se)}})
@@ -422,5 +423,5 @@ def _result(fit: _Fit, lawdef: _LawDef, *, method: str, experiment: str, signal_
         bounds={v.name: (v.lower, v.upper) for v in fit.spec.variables}, singular_values=fit.singular_values,
         condition_number=fit.condition_number, elapsed=time.perf_counter() - started, weights=weights,
         n_parameters=len(fit.spec.variables),
-        _problem=None if fit.evaluator is None else _Problem(
+        _problem=None if fit.evaluator is None else FitProblem(
             fit.evaluator, fit.spec, fit.x, fit.x_stderr, fit.rss, fit.n_used, fit.opts, forward))

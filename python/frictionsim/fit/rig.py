@@ -19,12 +19,13 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 import numpy as np
 
 from .._core import AxialVibrationRig, Dahl
-from .forward_model import _force_atol, _simulate, _simulate_kwargs, _with_state_atol
-from .parameters import _canonical
-from .result import IdentificationResult, _result
-from .search_space import Bounds, _build_spec, _resolve_excess, _user_bounds, _user_values
-from .solver import _fit, _fit_setup
-from .validation import _record, _reject, _summable, _time, _varying, _weights
+from ..validation import reject
+from .forward_model import default_force_atol, simulate_at_samples, simulate_kwargs, with_state_atol
+from .parameters import canonical_name
+from .result import identification_result, IdentificationResult
+from .search_space import Bounds, build_search_space, resolve_excess, user_bounds, user_values
+from .solver import fit_model, fit_setup
+from .validation import checked_record, residual_weights, sample_times, summable, varying
 
 __all__ = ["identify_axial_rig"]
 
@@ -93,47 +94,47 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
         Bad input; ``.parameter`` names it.
     """
     started = time.perf_counter()
-    lawdef, method, opts = _fit_setup(law, method, solver_options)
-    t, measured_all = _record(t, drive_force, "drive_force")
-    _summable("drive_force", measured_all)
+    lawdef, method, opts = fit_setup(law, method, solver_options)
+    t, measured_all = checked_record(t, drive_force, "drive_force")
+    summable("drive_force", measured_all)
     if t[0] != 0.0:  # F_d = k_d (v_d t - x) depends on absolute t: a shifted clock is a different experiment
-        _reject(f"t must start at 0, when the rig starts from rest and the drive end at v_d t = 0 (got "
-                f"t[0] = {t[0]!r} s; subtract the logger's start time)", "t")
-    w_all = _weights(weights, t.size)
+        reject(f"t must start at 0, when the rig starts from rest and the drive end at v_d t = 0 (got "
+               f"t[0] = {t[0]!r} s; subtract the logger's start time)", "t")
+    w_all = residual_weights(weights, t.size)
     rig_kwargs: Dict[str, Any] = dict(mass=mass, drive_stiffness=drive_stiffness, sliding_velocity=sliding_velocity,
                                       amplitude=amplitude, frequency=frequency, normal_force=normal_force,
                                       gravity=bool(gravity), gravitational_acceleration=gravitational_acceleration,
                                       initial_position=initial_position, initial_velocity=initial_velocity)
     probe = AxialVibrationRig(Dahl(0.4, 4e4), **rig_kwargs)  # the engine checks the rig (names the parameter)
     if not (isinstance(transient, (int, float)) and math.isfinite(transient) and transient >= 0):
-        _reject(f"transient must be a non-negative number of seconds (got {transient!r})", "transient")
+        reject(f"transient must be a non-negative number of seconds (got {transient!r})", "transient")
     window = t >= t[0] + transient
     if np.count_nonzero(window) < 3:
-        _reject(f"transient = {transient} s leaves fewer than 3 samples to fit", "transient")
-    sim_kwargs = _simulate_kwargs(simulate_options, rtol, atol)
+        reject(f"transient = {transient} s leaves fewer than 3 samples to fit", "transient")
+    sim_kwargs = simulate_kwargs(simulate_options, rtol, atol)
 
     # what is fitted, what is held
     if isinstance(fit, str):
         fit = (fit,)
     fitted_names: List[str] = []
     for key in fit:
-        name = _canonical(lawdef, str(key), "fit")
+        name = canonical_name(lawdef, str(key), "fit")
         if name in lawdef.excess:
             variable, other = lawdef.excess[name]
-            _reject(f"fit: {name} is fitted as {variable} = {name} - {other}; name that", "fit")
+            reject(f"fit: {name} is fitted as {variable} = {name} - {other}; name that", "fit")
         if name in fitted_names:
-            _reject(f"fit names {name} twice", "fit")
+            reject(f"fit names {name} twice", "fit")
         lawdef.refuse_fitting_tied(name, "fit")
         fitted_names.append(name)
     if not fitted_names:
-        _reject("fit must name at least one parameter", "fit")
+        reject("fit must name at least one parameter", "fit")
     n_fit_samples = int(np.count_nonzero(window if w_all is None else window & (w_all > 0)))
     if len(fitted_names) >= n_fit_samples:
-        _reject(f"t: {n_fit_samples} fitted samples cannot determine {len(fitted_names)} parameters", "t")
+        reject(f"t: {n_fit_samples} fitted samples cannot determine {len(fitted_names)} parameters", "t")
     speed = max(probe.vibration_velocity_amplitude, probe.sliding_velocity, 1e-3)
-    all_bounds = _user_bounds(lawdef, bounds, {}, float(np.max(np.abs(measured_all))) or 1.0, speed)
-    values = _user_values(lawdef, initial_guess, "initial_guess")
-    _resolve_excess(lawdef, values, "initial_guess")
+    all_bounds = user_bounds(lawdef, bounds, {}, float(np.max(np.abs(measured_all))) or 1.0, speed)
+    values = user_values(lawdef, initial_guess, "initial_guess")
+    resolve_excess(lawdef, values, "initial_guess")
     user_guess = {k: v for k, v in values.items() if k in fitted_names}
     fixed: Dict[str, float] = {}
     for p in lawdef.params:
@@ -144,8 +145,8 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
         elif p.default is not None:
             fixed[p.name] = p.default
         else:
-            _reject(f"initial_guess[{p.name!r}]: {lawdef.name} needs a value for {p.name} when it is not fitted",
-                    f"initial_guess[{p.name!r}]")
+            reject(f"initial_guess[{p.name!r}]: {lawdef.name} needs a value for {p.name} when it is not fitted",
+                   f"initial_guess[{p.name!r}]")
 
     weight_force = probe.mass * probe.gravitational_acceleration if probe.gravity else 0.0
     level = float(np.quantile(np.abs(measured_all - weight_force), 0.95))
@@ -153,15 +154,15 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
     guess = lawdef.starting_values()
     guess.update(mu=mu, mu_static_excess=0.1 * mu)
     guess.update(user_guess)
-    spec = _build_spec(lawdef, fitted_names, guess, fixed, all_bounds, {}, {}, user_guess)
+    spec = build_search_space(lawdef, fitted_names, guess, fixed, all_bounds, {}, {}, user_guess)
     # mu is scanned too: the drive-force level is a rough guess of mu N, since F_d also carries m x''
     scan_names = lawdef.scan_order([name for name in fitted_names if name not in user_guess and
                                     (lawdef.param(name).scan or name == "mu")])
 
     after = f" after transient = {transient} s" if transient else ""
-    measured = _varying("drive_force", measured_all[window], where=after)
+    measured = varying("drive_force", measured_all[window], where=after)
     w = None if w_all is None else w_all[window]
-    force_atol = _force_atol(atol, measured_all)
+    force_atol = default_force_atol(atol, measured_all)
     duration = float(t[-1] - t[0])
 
     def rig_for(q: Mapping[str, float]) -> AxialVibrationRig:
@@ -169,37 +170,38 @@ def identify_axial_rig(t: Any, drive_force: Any, *, law: Any = "dahl",
 
     def model(q: Mapping[str, float]) -> np.ndarray:
         rig = rig_for(q)
-        kwargs = _with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
-                                  law_stiffness=lawdef.state_stiffness(lawdef.physical(q)),
-                                  drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
-        result = _simulate(rig, t, kwargs)
+        kwargs = with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
+                                 law_stiffness=lawdef.state_stiffness(lawdef.physical(q)),
+                                 drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
+        result = simulate_at_samples(rig, t, kwargs)
         if result.t.size != t.size:
             raise IndexError("the run did not record every requested time")
         return np.asarray(rig.drive_force(result.t, result["position"]))[window]
 
-    result_fit = _fit(model, measured, w, spec, method=method, opts=opts, scan_names=scan_names,
-                      x0_given=bool(user_guess))
+    result_fit = fit_model(model, measured, w, spec, method=method, opts=opts, scan_names=scan_names,
+                           x0_given=bool(user_guess))
     q_fit = dict(result_fit.q)
 
     def forward(t_new: Any, v_new: Any, n_new: Any, state_new: Any) -> np.ndarray:
         """The rig at the solution recorded at new times, run as every residual of the fit was."""
         for name, value in (("relative_velocity", v_new), ("normal_force", n_new), ("initial_state", state_new)):
             if value is not None:
-                _reject(f"eval on the axial vibration rig takes only t: the rig sets its own {name}", name)
-        t_new = _time(t_new)
+                reject(f"eval on the axial vibration rig takes only t: the rig sets its own {name}", name)
+        t_new = sample_times(t_new)
         if t_new[0] < 0.0:
-            _reject(f"t must not start before 0, when the rig starts (got t[0] = {t_new[0]!r} s)", "t")
+            reject(f"t must not start before 0, when the rig starts (got t[0] = {t_new[0]!r} s)", "t")
         late = t_new[0] > 0.0  # the run still starts at 0: the drive end is at v_d t
         times = np.concatenate(([0.0], t_new)) if late else t_new
         rig = rig_for(q_fit)
-        kwargs = _with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
-                                  law_stiffness=lawdef.state_stiffness(lawdef.physical(q_fit)),
-                                  drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
-        result = _simulate(rig, times, kwargs)
+        kwargs = with_state_atol(sim_kwargs, rig.state_names, force_atol, duration=duration, speed=speed,
+                                 law_stiffness=lawdef.state_stiffness(lawdef.physical(q_fit)),
+                                 drive_stiffness=probe.drive_stiffness, omega=2.0 * math.pi * probe.frequency)
+        result = simulate_at_samples(rig, times, kwargs)
         force = np.asarray(rig.drive_force(result.t, result["position"]))
         return force[1:] if late else force
 
-    return _result(result_fit, lawdef, method=method, experiment="axial vibration rig", signal_name="drive_force",
-                   t=t[window], measured=measured, rig=rig_for(result_fit.q), initial_state=None, started=started,
-                   weights=w, forward=forward)
+    return identification_result(result_fit, lawdef, method=method, experiment="axial vibration rig",
+                                 signal_name="drive_force", t=t[window], measured=measured,
+                                 rig=rig_for(result_fit.q), initial_state=None, started=started, weights=w,
+                                 forward=forward)
 

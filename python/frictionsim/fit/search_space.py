@@ -14,14 +14,14 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .parameters import _canonical, _LawDef, _Param
-from .validation import _reject
+from ..validation import reject
+from .parameters import canonical_name, LawDef, Param
 
 Bounds = Mapping[str, Tuple[float, float]]
 
 
 @dataclass
-class _Var:
+class SearchVariable:
     """One searched variable: q = ref exp(x) (log) or q = ref + scale x (linear)."""
 
     name: str
@@ -63,10 +63,10 @@ class _Var:
 
 
 @dataclass
-class _Spec:
+class SearchSpace:
     """Fitted variables, fixed values, and the map to reported (physical) parameters."""
 
-    variables: List[_Var]
+    variables: List[SearchVariable]
     fixed: Dict[str, float]
     physical: Callable[[Mapping[str, float]], Dict[str, float]]  # all fit variables -> reported parameters
 
@@ -87,17 +87,17 @@ class _Spec:
         pairs = [v.x_bounds for v in self.variables]
         return np.array([p[0] for p in pairs]), np.array([p[1] for p in pairs])
 
-    def with_refs(self, q: Mapping[str, float]) -> "_Spec":
+    def with_refs(self, q: Mapping[str, float]) -> "SearchSpace":
         """The same spec re-centred at ``q`` (x = 0 there)."""
         variables = []
         for v in self.variables:
             ref = q[v.name]
             scale = v.scale if v.log else (abs(ref) if ref != 0.0 else v.scale)
-            variables.append(_Var(v.name, v.lower, v.upper, ref, v.log, scale, v.magnitude_floor))
-        return _Spec(variables, dict(self.fixed), self.physical)
+            variables.append(SearchVariable(v.name, v.lower, v.upper, ref, v.log, scale, v.magnitude_floor))
+        return SearchSpace(variables, dict(self.fixed), self.physical)
 
 
-def _make_var(param: _Param, bounds: Tuple[float, float], ref: float, floor: float = 0.0) -> _Var:
+def _make_var(param: Param, bounds: Tuple[float, float], ref: float, floor: float = 0.0) -> SearchVariable:
     """Log space when the lower bound is positive; else linear, scaled by |ref| (or a tenth of the range)."""
     lower, upper = bounds
     use_log = lower > 0.0
@@ -105,59 +105,59 @@ def _make_var(param: _Param, bounds: Tuple[float, float], ref: float, floor: flo
         scale = 1.0
     else:
         scale = abs(ref) if ref != 0.0 else ((upper - lower) / 10.0 if math.isfinite(upper - lower) else 1.0)
-    return _Var(param.name, lower, upper, ref, use_log, scale, floor)
+    return SearchVariable(param.name, lower, upper, ref, use_log, scale, floor)
 
 
 # ------------------------------------------------------------------------------------------ the user's input
-def _user_bounds(lawdef: _LawDef, bounds: Optional[Bounds], extra: Mapping[str, _Param],
-                 force_scale: float = 1.0, speed_scale: float = 1.0) -> Dict[str, Tuple]:
+def user_bounds(lawdef: LawDef, bounds: Optional[Bounds], extra: Mapping[str, Param],
+                force_scale: float = 1.0, speed_scale: float = 1.0) -> Dict[str, Tuple]:
     """Default bounds overridden by ``bounds``; a NaN upper bound (damping) becomes 10 force / speed."""
     damping_max = 10.0 * force_scale / speed_scale
     out: Dict[str, Tuple[float, float]] = {
         p.name: (p.bounds[0], damping_max if math.isnan(p.bounds[1]) else p.bounds[1]) for p in lawdef.params}
     out.update({name: p.bounds for name, p in extra.items()})
     for key, pair in (bounds or {}).items():
-        name = _canonical(lawdef, key, "bounds", tuple(extra))
+        name = canonical_name(lawdef, key, "bounds", tuple(extra))
         where = f"bounds[{key!r}]"
         if name in lawdef.excess:
             variable, other = lawdef.excess[name]
-            _reject(f"{where}: {name} is fitted as {variable} = {name} - {other} >= 0; bound that instead", where)
+            reject(f"{where}: {name} is fitted as {variable} = {name} - {other} >= 0; bound that instead", where)
         try:
             lo, hi = (float(pair[0]), float(pair[1]))
         except (TypeError, ValueError, IndexError):
-            _reject(f"{where} must be a (lower, upper) pair of numbers (got {pair!r})", where)
+            reject(f"{where} must be a (lower, upper) pair of numbers (got {pair!r})", where)
         if math.isnan(lo) or math.isnan(hi) or not lo < hi:
-            _reject(f"{where} must satisfy lower < upper (got ({lo}, {hi}))", where)
+            reject(f"{where} must satisfy lower < upper (got ({lo}, {hi}))", where)
         param = extra.get(name) or lawdef.param(name)
         if param.minimum is not None and not math.isinf(-param.minimum):
             if lo < param.minimum or (param.strict and lo == param.minimum):
                 rule = ">" if param.strict else ">="
-                _reject(f"{where}: the lower bound must be {rule} {param.minimum} for {name} (got {lo})", where)
+                reject(f"{where}: the lower bound must be {rule} {param.minimum} for {name} (got {lo})", where)
         if math.isfinite(param.maximum) and not param.admits(hi):
             rule = "<" if param.strict_max else "<="
-            _reject(f"{where}: the upper bound must be {rule} {param.maximum} for {name} (got {hi})", where)
+            reject(f"{where}: the upper bound must be {rule} {param.maximum} for {name} (got {hi})", where)
         out[name] = (lo, hi)
     return out
 
 
-def _user_values(lawdef: _LawDef, values: Optional[Mapping[str, float]], where: str,
-                 extra: Sequence[str] = ()) -> Dict[str, float]:
+def user_values(lawdef: LawDef, values: Optional[Mapping[str, float]], where: str,
+                extra: Sequence[str] = ()) -> Dict[str, float]:
     """{name or alias: number} -> {fit-variable name: finite float}."""
     out: Dict[str, float] = {}
     for key, value in (values or {}).items():
-        name = _canonical(lawdef, key, where, extra)
+        name = canonical_name(lawdef, key, where, extra)
         try:
             value = float(value)
         except (TypeError, ValueError):
-            _reject(f"{where}[{key!r}] must be a number (got {value!r})", f"{where}[{key!r}]")
+            reject(f"{where}[{key!r}] must be a number (got {value!r})", f"{where}[{key!r}]")
         if not math.isfinite(value):
-            _reject(f"{where}[{key!r}] must be finite (got {value})", f"{where}[{key!r}]")
+            reject(f"{where}[{key!r}] must be finite (got {value})", f"{where}[{key!r}]")
         out[name] = value
     return out
 
 
-def _resolve_excess(lawdef: _LawDef, values: Dict[str, float], where: str,
-                    lower_values: Optional[Mapping[str, float]] = None) -> None:
+def resolve_excess(lawdef: LawDef, values: Dict[str, float], where: str,
+                   lower_values: Optional[Mapping[str, float]] = None) -> None:
     """Turn a given mu_static (any keyword bounded below by another) into its fit variable mu_static_excess =
     mu_static - mu; needs mu in ``values`` or ``lower_values``."""
     for name, (variable, other) in lawdef.excess.items():
@@ -166,16 +166,16 @@ def _resolve_excess(lawdef: _LawDef, values: Dict[str, float], where: str,
         value = values.pop(name)
         bound = values.get(other, (lower_values or {}).get(other))
         if bound is None:
-            _reject(f"{where}[{name!r}] needs {other} in {where} too ({name} is fitted as {name} - {other}); "
-                    f"or give {variable}", f"{where}[{name!r}]")
+            reject(f"{where}[{name!r}] needs {other} in {where} too ({name} is fitted as {name} - {other}); "
+                   f"or give {variable}", f"{where}[{name!r}]")
         if value < bound:
-            _reject(f"{where}[{name!r}] must be >= {other} ({bound}); got {value}", f"{where}[{name!r}]")
+            reject(f"{where}[{name!r}] must be >= {other} ({bound}); got {value}", f"{where}[{name!r}]")
         values[variable] = value - bound
 
 
-def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, float], fixed: Mapping[str, float],
-                bounds: Mapping[str, Tuple[float, float]], extra: Mapping[str, _Param],
-                floors: Mapping[str, float], user_guess: Mapping[str, float]) -> _Spec:
+def build_search_space(lawdef: LawDef, fitted: Sequence[str], guess: Mapping[str, float], fixed: Mapping[str, float],
+                       bounds: Mapping[str, Tuple[float, float]], extra: Mapping[str, Param],
+                       floors: Mapping[str, float], user_guess: Mapping[str, float]) -> SearchSpace:
     """The search space centred at ``guess`` (a data-based guess is clipped into the bounds, a user's is not)."""
     variables = []
     for name in fitted:
@@ -184,8 +184,8 @@ def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, floa
         value = guess[name]
         if not lo <= value <= hi:
             if name in user_guess:
-                _reject(f"initial_guess[{name!r}] = {value} is outside its bounds [{lo}, {hi}]",
-                        f"initial_guess[{name!r}]")
+                reject(f"initial_guess[{name!r}] = {value} is outside its bounds [{lo}, {hi}]",
+                       f"initial_guess[{name!r}]")
             value = min(max(value, lo), hi)
         if lo > 0.0 and value <= 0.0:
             value = lo
@@ -193,7 +193,7 @@ def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, floa
     for name, value in fixed.items():
         param = extra.get(name) or lawdef.param(name)
         if not param.admits(value):
-            _reject(f"fixed[{name!r}] = {value} is not a valid {name}", f"fixed[{name!r}]")
+            reject(f"fixed[{name!r}] = {value} is not a valid {name}", f"fixed[{name!r}]")
 
     def physical(q: Mapping[str, float]) -> Dict[str, float]:
         out = lawdef.physical(q)
@@ -202,4 +202,4 @@ def _build_spec(lawdef: _LawDef, fitted: Sequence[str], guess: Mapping[str, floa
                 out[name] = q[name]
         return out
 
-    return _Spec(variables, dict(fixed), physical)
+    return SearchSpace(variables, dict(fixed), physical)

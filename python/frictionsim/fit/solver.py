@@ -22,12 +22,12 @@ from typing import Any, Callable, Dict, Optional, Sequence, Tuple
 import numpy as np
 from scipy import optimize
 
-from .parameters import _law_def, _LawDef
-from .progress import _Reporter, _StopSearch, _verbose_logging
-from .residuals import _Evaluator
-from .search_space import _Spec
-from .uncertainty import _residual_variance, _uncertainty
-from .validation import _reject
+from ..validation import reject
+from .parameters import law_def, LawDef
+from .progress import Reporter, StopSearch, verbose_logging
+from .residuals import Evaluator
+from .search_space import SearchSpace
+from .uncertainty import parameter_uncertainty, residual_variance
 
 #: Search methods accepted by ``method=``.
 METHODS = ("least_squares", "differential_evolution")
@@ -40,12 +40,12 @@ logger = logging.getLogger("frictionsim")
 
 def _check_method(method: str) -> str:
     if method not in METHODS:
-        _reject(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
+        reject(f"method must be one of {', '.join(METHODS)} (got {method!r})", "method")
     return method
 
 
 @dataclass
-class _Options:
+class SearchOptions:
     """Solver knobs shared by every identify_* function (see the docstrings)."""
 
     seed: Optional[int] = 0
@@ -68,38 +68,38 @@ class _Options:
     callback: Optional[Callable[..., Any]] = None
 
 
-def _options(kwargs: Dict[str, Any]) -> _Options:
+def _options(kwargs: Dict[str, Any]) -> SearchOptions:
     """The ``**solver_options`` of an identify_* call, checked (a misspelt one is a TypeError, as for any
     keyword)."""
-    known = _Options.__dataclass_fields__
+    known = SearchOptions.__dataclass_fields__
     unknown = [k for k in kwargs if k not in known]
     if unknown:
         raise TypeError(f"unexpected keyword argument(s): {', '.join(unknown)}; solver options are "
                         f"{', '.join(known)}")
-    opts = _Options(**kwargs)
+    opts = SearchOptions(**kwargs)
     for name in ("maxiter", "popsize", "workers"):
         value = getattr(opts, name)
         if isinstance(value, bool) or not float(value).is_integer() or value < 1:
-            _reject(f"{name} must be a positive whole number (got {value!r})", name)
+            reject(f"{name} must be a positive whole number (got {value!r})", name)
     if not (isinstance(opts.verbose, (bool, int)) and opts.verbose >= 0):
-        _reject(f"verbose must be True, False or a non-negative whole number (got {opts.verbose!r})", "verbose")
+        reject(f"verbose must be True, False or a non-negative whole number (got {opts.verbose!r})", "verbose")
     if opts.callback is not None and not callable(opts.callback):
-        _reject(f"callback must be callable, callback(progress) -> bool (got {opts.callback!r})", "callback")
+        reject(f"callback must be callable, callback(progress) -> bool (got {opts.callback!r})", "callback")
     for name in ("tol", "diff_step", "max_relative_stderr", "rcond", "jacobian_step"):
         value = getattr(opts, name)
         if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-            _reject(f"{name} must be positive and finite (got {value!r})", name)
+            reject(f"{name} must be positive and finite (got {value!r})", name)
     return opts
 
 
-def _fit_setup(law: Any, method: str, solver_options: Dict[str, Any]) -> Tuple[_LawDef, str, _Options]:
+def fit_setup(law: Any, method: str, solver_options: Dict[str, Any]) -> Tuple[LawDef, str, SearchOptions]:
     """The law, the search method and its options of an identify_* call, checked in that order."""
-    return _law_def(law), _check_method(method), _options(solver_options)
+    return law_def(law), _check_method(method), _options(solver_options)
 
 
 # ------------------------------------------------------------------------------------------------ searches
-def _coordinate_scan(evaluator: _Evaluator, spec: _Spec, names: Sequence[str], rounds: int = 1,
-                     patience: int = 4) -> _Spec:
+def _coordinate_scan(evaluator: Evaluator, spec: SearchSpace, names: Sequence[str], rounds: int = 1,
+                     patience: int = 4) -> SearchSpace:
     """Coarse grid over each named variable's bounds in turn (others held), to start least_squares nearby.
 
     Each grid is walked upwards and left once ``patience`` points past the sweep's best cost 25 % more than it
@@ -129,8 +129,8 @@ def _coordinate_scan(evaluator: _Evaluator, spec: _Spec, names: Sequence[str], r
     return spec.with_refs(q)
 
 
-def _least_squares(evaluator: _Evaluator, spec: _Spec, x0: np.ndarray, opts: _Options,
-                   report: Optional[_Reporter] = None, stage: str = "least_squares") -> Tuple[np.ndarray, bool, str]:
+def _least_squares(evaluator: Evaluator, spec: SearchSpace, x0: np.ndarray, opts: SearchOptions,
+                   report: Optional[Reporter] = None, stage: str = "least_squares") -> Tuple[np.ndarray, bool, str]:
     """-> (x, success, message). Each iteration (one Jacobian, at the accepted iterate) is reported; a callback
     that asks to stop ends the search at the best point seen."""
     lower, upper = spec.x_bounds()
@@ -140,26 +140,26 @@ def _least_squares(evaluator: _Evaluator, spec: _Spec, x0: np.ndarray, opts: _Op
         if report is not None:
             r = evaluator.residual(x)  # cached: least_squares evaluated it just before
             if report(stage, x, float(r @ r), evaluator.n_evaluations):
-                raise _StopSearch
+                raise StopSearch
         return evaluator.jacobian(x, opts.diff_step)
 
     try:
         ls = optimize.least_squares(
             evaluator.residual, x0, jac=jacobian, bounds=(lower, upper), method="trf", x_scale=1.0,
             loss=opts.loss, ftol=opts.ftol, xtol=opts.xtol, gtol=opts.gtol, max_nfev=opts.max_nfev)
-    except _StopSearch:
+    except StopSearch:
         x = evaluator.best_x if evaluator.best_x is not None else x0
         return np.clip(x, lower, upper), False, "stopped by the callback"
     logger.debug("%s: %s (%d simulations so far)", stage, ls.message, evaluator.n_evaluations)
     return ls.x, bool(ls.success), str(ls.message)
 
 
-def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.ndarray], opts: _Options,
-                            report: Optional[_Reporter] = None):
+def _differential_evolution(evaluator: Evaluator, spec: SearchSpace, x0: Optional[np.ndarray], opts: SearchOptions,
+                            report: Optional[Reporter] = None):
     lower, upper = spec.x_bounds()
     if not (np.all(np.isfinite(lower)) and np.all(np.isfinite(upper))):
         bad = spec.names[int(np.flatnonzero(~(np.isfinite(lower) & np.isfinite(upper)))[0])]
-        _reject(f"differential_evolution needs finite bounds; bounds[{bad!r}] is not", f"bounds[{bad!r}]")
+        reject(f"differential_evolution needs finite bounds; bounds[{bad!r}] is not", f"bounds[{bad!r}]")
     kwargs: Dict[str, Any] = dict(maxiter=int(opts.maxiter), popsize=int(opts.popsize), tol=float(opts.tol),
                                   polish=False, init="latinhypercube")
     kwargs[_DE_SEED_KEYWORD] = opts.seed
@@ -184,10 +184,10 @@ def _differential_evolution(evaluator: _Evaluator, spec: _Spec, x0: Optional[np.
 
 # ------------------------------------------------------------------------------------------------ the core
 @dataclass
-class _Fit:
+class FitSolution:
     """What the core returns: the solution and its uncertainty, in fit variables and reported parameters."""
 
-    spec: _Spec
+    spec: SearchSpace
     x: np.ndarray
     q: Dict[str, float]
     params: Dict[str, float]
@@ -208,30 +208,30 @@ class _Fit:
     x_stderr: np.ndarray  # standard errors in the search variables (inf: not determined)
     rss: float  # weighted residual sum of squares at the solution
     n_used: int  # samples with a positive weight: the m of s^2 = rss / (m - n)
-    evaluator: Optional[_Evaluator] = None  # the objective, kept for profile likelihood
-    opts: Optional[_Options] = None
+    evaluator: Optional[Evaluator] = None  # the objective, kept for profile likelihood
+    opts: Optional[SearchOptions] = None
 
 
-def _fit(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, weights: Optional[np.ndarray],
-         spec: _Spec, *, method: str, opts: _Options, scan_names: Sequence[str] = (),
-         x0_given: bool = False) -> _Fit:
+def fit_model(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray, weights: Optional[np.ndarray],
+              spec: SearchSpace, *, method: str, opts: SearchOptions, scan_names: Sequence[str] = (),
+              x0_given: bool = False) -> FitSolution:
     """Fit ``model`` to ``measured``: the core of the kinematic and the rig-level identification.
 
     ``model(q)`` returns the simulated signal at the measured samples for fit variables ``q`` (raising
     SimulationError on a failed run); ``spec`` gives the searched variables, bounds, fixed values and the map to
     reported parameters.
     """
-    with _verbose_logging(int(opts.verbose)):
+    with verbose_logging(int(opts.verbose)):
         return _fit_logged(model, measured, weights, spec, method=method, opts=opts, scan_names=scan_names,
                            x0_given=x0_given)
 
 
 def _fit_logged(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndarray,
-                weights: Optional[np.ndarray], spec: _Spec, *, method: str, opts: _Options,
-                scan_names: Sequence[str], x0_given: bool) -> _Fit:
-    evaluator = _Evaluator(model, measured, weights, spec)
+                weights: Optional[np.ndarray], spec: SearchSpace, *, method: str, opts: SearchOptions,
+                scan_names: Sequence[str], x0_given: bool) -> FitSolution:
+    evaluator = Evaluator(model, measured, weights, spec)
     # the reporter reads evaluator.spec: the scan re-centres it
-    report = _Reporter(int(opts.verbose), opts.callback, lambda x: evaluator.spec.physical(evaluator.spec.q(x)))
+    report = Reporter(int(opts.verbose), opts.callback, lambda x: evaluator.spec.physical(evaluator.spec.q(x)))
     messages = []
     success = True
     logger.debug("fitting %s by %s to %d samples", ", ".join(spec.names), method, measured.size)
@@ -266,13 +266,14 @@ def _fit_logged(model: Callable[[Dict[str, float]], np.ndarray], measured: np.nd
         signal = np.full_like(measured, np.nan)
     residual = signal - measured
     n, m = len(spec.variables), int(np.count_nonzero(weights)) if weights is not None else measured.size
-    s2 = _residual_variance(residual if weights is None else residual * weights, m, n)
+    s2 = residual_variance(residual if weights is None else residual * weights, m, n)
 
     jac = evaluator.jacobian(x, opts.jacobian_step, central=True) if ran and n else np.zeros((m, n))
-    uncertainty = _uncertainty(spec, x, jac, s2, rcond=opts.rcond, max_relative_stderr=opts.max_relative_stderr)
+    uncertainty = parameter_uncertainty(spec, x, jac, s2, rcond=opts.rcond,
+                                        max_relative_stderr=opts.max_relative_stderr)
     weighted = residual if weights is None else residual * weights
     logger.debug("fit done: rss %.6g, %d simulations (%d failed)", float(weighted @ weighted),
                  evaluator.n_evaluations, evaluator.n_failed)
-    return _Fit(spec=spec, x=x, q=q, signal=signal, residual=residual, success=success,
-                message="; ".join(messages), n_evaluations=evaluator.n_evaluations, n_failed=evaluator.n_failed,
-                rss=float(weighted @ weighted), n_used=m, evaluator=evaluator, opts=opts, **uncertainty)
+    return FitSolution(spec=spec, x=x, q=q, signal=signal, residual=residual, success=success,
+                       message="; ".join(messages), n_evaluations=evaluator.n_evaluations, n_failed=evaluator.n_failed,
+                       rss=float(weighted @ weighted), n_used=m, evaluator=evaluator, opts=opts, **uncertainty)

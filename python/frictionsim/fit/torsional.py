@@ -22,9 +22,10 @@ from scipy.signal import savgol_filter
 
 from .._core import HystereticFriction
 from ..errors import InvalidParameterError
-from ..signal import _sampling_rate
-from .quality import _fit_quality, _require_finite
-from .validation import _time, _varying, _vector
+from ..signal import sampling_rate
+from ..validation import require_finite
+from .quality import fit_quality
+from .validation import finite_vector, sample_times, varying
 
 __all__ = ["FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
            "fit_hysteretic_friction"]
@@ -33,7 +34,7 @@ DEFAULT_WINDOW = 0.03  # s; see estimate_friction_torque
 _MIN_STICK_PHASE = 3  # samples; shorter runs below the stick threshold are noise crossings, not stick phases
 
 
-def _reject(function: str, parameter: str, rule: str):
+def reject(function: str, parameter: str, rule: str):
     raise InvalidParameterError(f"{function}: {parameter} {rule}", parameter)
 
 
@@ -41,15 +42,15 @@ def _number(function: str, name: str, value: Any, allow_zero: bool = False) -> f
     try:
         value = float(value)
     except (TypeError, ValueError):
-        _reject(function, name, f"must be a number (got {value!r})")
+        reject(function, name, f"must be a number (got {value!r})")
     if not np.isfinite(value) or value < 0.0 or (value == 0.0 and not allow_zero):
-        _reject(function, name, f"must be finite and {'>= 0' if allow_zero else '> 0'} (got {value})")
+        reject(function, name, f"must be finite and {'>= 0' if allow_zero else '> 0'} (got {value})")
     return value
 
 
 def _integer(function: str, name: str, value: Any, minimum: int, why: str) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        _reject(function, name, f"must be an integer >= {minimum}{why} (got {value!r})")
+        reject(function, name, f"must be an integer >= {minimum}{why} (got {value!r})")
     return int(value)
 
 
@@ -112,12 +113,12 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
     record, polyorder < 2, J2 <= 0, k2 <= 0, d2 < 0.
     """
     fn = "estimate_friction_torque"
-    t = _time(t)  # finite, strictly increasing
+    t = sample_times(t)  # finite, strictly increasing
     if t.size < 5:
-        _reject(fn, "t", f"must hold at least 5 samples (got {t.size})")
-    th2 = _vector("disc_angle", disc_angle, t.size)
-    th3 = _vector("drive_angle", drive_angle, t.size)
-    _sampling_rate(fn, t, 1e-4)  # Savitzky-Golay needs steps equal to within 1e-4
+        reject(fn, "t", f"must hold at least 5 samples (got {t.size})")
+    th2 = finite_vector("disc_angle", disc_angle, t.size)
+    th3 = finite_vector("drive_angle", drive_angle, t.size)
+    sampling_rate(fn, t, 1e-4)  # Savitzky-Golay needs steps equal to within 1e-4
     dt = (t[-1] - t[0]) / (t.size - 1)
     j2 = _number(fn, "disc_inertia", disc_inertia)
     k2 = _number(fn, "shaft_stiffness", shaft_stiffness)
@@ -127,15 +128,15 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
     if window is None:
         samples = max(2 * int(round(DEFAULT_WINDOW / (2 * dt))) + 1, minimum)
         if samples > t.size:
-            _reject(fn, "t", f"must hold at least {samples} samples for the default window (got {t.size})")
+            reject(fn, "t", f"must hold at least {samples} samples for the default window (got {t.size})")
     else:
         window = _number(fn, "window", window)
         samples = 2 * int(round(window / (2 * dt))) + 1
         if samples < minimum:
-            _reject(fn, "window", f"must span at least {minimum} samples ({(minimum - 1) * dt:.6g} "
+            reject(fn, "window", f"must span at least {minimum} samples ({(minimum - 1) * dt:.6g} "
                                   f"s at dt = {dt:.6g} s); got {window} s = {samples} samples")
         if samples > t.size:
-            _reject(fn, "window", f"must not be longer than the record ({t.size} samples, {t[-1] - t[0]:.6g} s); "
+            reject(fn, "window", f"must not be longer than the record ({t.size} samples, {t[-1] - t[0]:.6g} s); "
                                   f"got {window} s = {samples} samples")
 
     def smooth(x, deriv):
@@ -145,8 +146,8 @@ def estimate_friction_torque(t, disc_angle, drive_angle, *, disc_inertia: float 
     with np.errstate(over="ignore", invalid="ignore"):  # the finiteness rule below names what overflowed
         w2, al2, twist_rate = smooth(th2, 1), smooth(th2, 2), smooth(twist, 1)
         torque = -(j2 * al2 + d2 * twist_rate + k2 * smooth(twist, 0))
-    _require_finite(fn, {"disc_speed": w2, "disc_acceleration": al2, "drive_speed": w2 - twist_rate,
-                         "friction_torque": torque},
+    require_finite(fn, {"disc_speed": w2, "disc_acceleration": al2, "drive_speed": w2 - twist_rate,
+                        "friction_torque": torque},
                     {"disc_angle": th2, "drive_angle": th3, "disc_inertia": j2, "shaft_stiffness": k2,
                      "shaft_damping": d2})
     return FrictionTorqueEstimate(_frozen(t.copy()), _frozen(w2), _frozen(w2 - twist_rate), _frozen(al2),
@@ -230,9 +231,9 @@ def _design(w: np.ndarray, al: np.ndarray) -> np.ndarray:
 def _fit_branch(name: str, w: np.ndarray, al: np.ndarray, torque: np.ndarray) -> BranchFit:
     fn = "fit_hysteretic_friction"
     if w.size < 6:
-        _reject(fn, "disc_acceleration", f"leaves the {name} branch {w.size} samples; at least 6 are needed to fit "
+        reject(fn, "disc_acceleration", f"leaves the {name} branch {w.size} samples; at least 6 are needed to fit "
                                          f"its 6 coefficients")
-    _varying("friction_torque", torque, where=f" on the {name} branch")
+    varying("friction_torque", torque, where=f" on the {name} branch")
     # in units of each signal's largest value, so the squares and products below stay in double's range
     units = [float(np.max(np.abs(x))) for x in (w, al, torque)]
     design = _design(w / units[0], al / units[1])
@@ -240,14 +241,14 @@ def _fit_branch(name: str, w: np.ndarray, al: np.ndarray, torque: np.ndarray) ->
     norms[norms == 0.0] = 1.0
     solution, _, rank, singular = np.linalg.lstsq(design / norms, torque / units[2], rcond=None)
     if rank < 6:
-        _reject(fn, "disc_acceleration", f"gives the {name} branch a rank-deficient design (rank {rank} of 6): its "
+        reject(fn, "disc_acceleration", f"gives the {name} branch a rank-deficient design (rank {rank} of 6): its "
                                          f"{w.size} samples do not vary enough in w and al to separate the 6 terms")
     scaled = design / norms
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):  # the finiteness rule reports these
         factor = units[2] / norms / _design(np.array(units[0]), np.array(units[1]))  # solution -> SI coefficients
         coefficients = solution * factor
         residual = scaled @ solution - torque / units[2]
-        rmse, r_squared = _fit_quality(torque / units[2], residual)
+        rmse, r_squared = fit_quality(torque / units[2], residual)
         # Cov = s^2 (A^T A)^-1 of the scaled design A = U S V^T: s^2 V S^-2 V^T (no normal equations formed)
         dof = w.size - 6
         _, sv, vt = np.linalg.svd(scaled, full_matrices=False)
@@ -300,22 +301,22 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     a negative guard, no stick phase, fewer than 6 samples (or a rank-deficient design) in a branch.
     """
     fn = "fit_hysteretic_friction"
-    w = _vector("disc_speed", disc_speed)
+    w = finite_vector("disc_speed", disc_speed)
     if w.size == 0:
-        _reject(fn, "disc_speed", "must not be empty")
-    al = _vector("disc_acceleration", disc_acceleration, w.size, like="disc_speed")
-    torque = _vector("friction_torque", friction_torque, w.size, like="disc_speed")
+        reject(fn, "disc_speed", "must not be empty")
+    al = finite_vector("disc_acceleration", disc_acceleration, w.size, like="disc_speed")
+    torque = finite_vector("friction_torque", friction_torque, w.size, like="disc_speed")
     w_s = _number(fn, "stick_speed", stick_speed)
     guard = _integer(fn, "guard", guard, 0, " (samples)")
     if 2 * guard + 1 > w.size:
-        _reject(fn, "guard", f"must leave the record longer than 2 guard + 1 samples (got {guard} for {w.size} "
+        reject(fn, "guard", f"must leave the record longer than 2 guard + 1 samples (got {guard} for {w.size} "
                              "samples)")
     if branch_gap not in ("hold", "error"):
-        _reject(fn, "branch_gap", f"must be 'hold' or 'error' (got {branch_gap!r})")
+        reject(fn, "branch_gap", f"must be 'hold' or 'error' (got {branch_gap!r})")
     if stick_threshold is None:
         stick_threshold = 0.01 * float(np.max(np.abs(w)))
         if stick_threshold == 0.0:
-            _reject(fn, "disc_speed", "must not be 0 throughout (the default stick_threshold is 1 % of max |w|)")
+            reject(fn, "disc_speed", "must not be 0 throughout (the default stick_threshold is 1 % of max |w|)")
     stick_threshold = _number(fn, "stick_threshold", stick_threshold)
     if acceleration_threshold is None:
         acceleration_threshold = 0.02 * float(np.percentile(np.abs(al), 99))
@@ -325,11 +326,11 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     edges = np.flatnonzero(np.diff(np.concatenate(([0], stick.astype(np.int8), [0]))))
     phases = [(a, b) for a, b in zip(edges[::2], edges[1::2]) if b - a >= _MIN_STICK_PHASE]
     if not phases:
-        _reject(fn, "disc_speed", f"has no stick phase (no run of >= {_MIN_STICK_PHASE} samples with |w| <= "
+        reject(fn, "disc_speed", f"has no stick phase (no run of >= {_MIN_STICK_PHASE} samples with |w| <= "
                                   f"stick_threshold = {stick_threshold:.6g} rad/s) to give the break-away torque")
     breakaway = float(np.median([_phase_end_torque(torque[a:b], guard) for a, b in phases]))
     if breakaway <= 0.0:
-        _reject(fn, "friction_torque", "must reach a positive break-away torque in the stick phases (got 0)")
+        reject(fn, "friction_torque", "must reach a positive break-away torque in the stick phases (got 0)")
     sign = np.where(w < 0.0, -1.0, 1.0)  # odd extension T(w, al) = -T(-w, -al)
     w, al, torque = sign * w, sign * al, sign * torque
     near_corner = stick
@@ -340,7 +341,7 @@ def fit_hysteretic_friction(disc_speed, disc_acceleration, friction_torque, *, s
     kept = ~near_corner & (np.abs(al) >= acceleration_threshold)
     branches = [_fit_branch(name, w[m], al[m], torque[m])
                 for name, m in (("accelerating", kept & (al > 0.0)), ("decelerating", kept & (al < 0.0)))]
-    _require_finite(fn, {"stick_slope": breakaway / w_s, **{f"{b.name} {field}": getattr(b, field) for b in branches
+    require_finite(fn, {"stick_slope": breakaway / w_s, **{f"{b.name} {field}": getattr(b, field) for b in branches
                                                                for field in ("coefficients", "r_squared", "rmse")}},
                     {"disc_speed": w, "disc_acceleration": al, "friction_torque": torque, "stick_speed": w_s})
     law = HystereticFriction(breakaway / w_s, accelerating=branches[0].coefficients,

@@ -15,16 +15,16 @@ from typing import Any, Dict, List, Mapping, Sequence, Tuple
 
 import numpy as np
 
-from .search_space import _Spec, _Var
+from .search_space import SearchSpace, SearchVariable
 
 
-def _residual_variance(weighted: np.ndarray, m: int, n: int) -> float:
+def residual_variance(weighted: np.ndarray, m: int, n: int) -> float:
     """s^2 = SSR / (m - n), unbiased for n fitted parameters and m samples; NaN if the residual is not finite."""
     dof = max(m - n, 1)
     return float(weighted @ weighted) / dof if np.all(np.isfinite(weighted)) else math.nan
 
 
-def _at_bound(var: _Var, value: float) -> int:
+def _at_bound(var: SearchVariable, value: float) -> int:
     """-1 / +1 if ``value`` sits on the lower / upper bound (log: within 0.1 %; linear: within 1e-6 of the
     range, or of the variable's scale for an open range), else 0."""
     if var.log:
@@ -37,7 +37,7 @@ def _at_bound(var: _Var, value: float) -> int:
     return 1 if math.isfinite(var.upper) and var.upper - value <= 1e-6 * width else 0
 
 
-def _chain_rule(spec: _Spec, x: np.ndarray, q: Mapping[str, float], params: Mapping[str, float]) -> np.ndarray:
+def _chain_rule(spec: SearchSpace, x: np.ndarray, q: Mapping[str, float], params: Mapping[str, float]) -> np.ndarray:
     """G = d params / d x = (d params / d q) diag(dq/dx): the reported parameters (mu_static = mu + excess)
     as functions of the search variables; entries at rounding level are zeroed so G's pattern says which
     search variables a parameter depends on."""
@@ -73,7 +73,7 @@ def _svd_covariance(jac: np.ndarray, s2: float) -> Tuple[np.ndarray, np.ndarray,
     return sv, vt, cov_x, in_null
 
 
-def _variable_reasons(spec: _Spec, q: Mapping[str, float], sv: np.ndarray, vt: np.ndarray,
+def _variable_reasons(spec: SearchSpace, q: Mapping[str, float], sv: np.ndarray, vt: np.ndarray,
                       rcond: float) -> List[List[str]]:
     """Per search variable, why the data do not determine it: at a bound, or in a direction of the scaled
     Jacobian the data barely see (with its partners there). "{name}" is replaced when reported."""
@@ -125,8 +125,8 @@ def _correlation(cov_p: np.ndarray, var_p: np.ndarray, fitted_idx: Sequence[int]
     return cov_f, corr
 
 
-def _uncertainty(spec: _Spec, x: np.ndarray, jac: np.ndarray, s2: float, *, rcond: float,
-                 max_relative_stderr: float) -> Dict[str, Any]:
+def parameter_uncertainty(spec: SearchSpace, x: np.ndarray, jac: np.ndarray, s2: float, *, rcond: float,
+                          max_relative_stderr: float) -> Dict[str, Any]:
     """Covariance s^2 (J^T J)^-1, chain rule to reported parameters, identifiability flags with reasons."""
     n = x.size
     q = spec.q(x)
