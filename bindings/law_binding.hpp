@@ -1,7 +1,9 @@
 // bind_law<Law>: one Python class per friction law, read off the law's description (its `fields` table, `key`,
 // `name`, `state_names`, optional `description`): constructor keywords (in table order, required ones without a
 // default, "unset" ones accepting None), properties, repr, pickling, the docstring, errors in Python's names, and
-// the class attributes `key`, `parameters` (one fs.Parameter per field), `state_names`, `has_stick`, `stiff`.
+// the class attributes `key`, `parameters` (one fs.Parameter per field), `state_names`, `state_units` (each
+// state's SI unit, declared by the law next to its names: io and plots label the outputs from it), `has_stick`,
+// `stiff`.
 // The model is manif's wrap_lie_group_base: one template, instantiated per type of a type list.
 #pragma once
 
@@ -29,6 +31,10 @@ template <class T, class = void>
 struct has_state_names : std::false_type {};
 template <class T>
 struct has_state_names<T, std::void_t<decltype(T::state_names)>> : std::true_type {};
+template <class T, class = void>
+struct has_state_units : std::false_type {};
+template <class T>
+struct has_state_units<T, std::void_t<decltype(T::state_units)>> : std::true_type {};
 
 /// Keyword I of Law's constructor: double, or std::optional<double> (None = unset) for fields that may be unset.
 template <class Law, std::size_t I>
@@ -107,10 +113,16 @@ py::class_<Law> bind_law(py::module_& m) {
     cls.attr("key") = Law::key;
     cls.attr("has_stick") = Law::has_stick;
     cls.attr("stiff") = declares_stiff<Law>::value;
-    py::tuple states(Law::state_count);
+    static_assert(Law::state_count == 0 || law_binding::has_state_units<Law>::value,
+                  "bind_law: a law with states declares their SI units next to their names: `static constexpr "
+                  "std::array<const char*, state_count> state_units` (\"m\", \"N\", \"1\" for a count)");
+    py::tuple states(Law::state_count), units(Law::state_count);
     if constexpr (law_binding::has_state_names<Law>::value)
         for (std::size_t i = 0; i < Law::state_count; ++i) states[i] = py::str(Law::state_names[i]);
+    if constexpr (law_binding::has_state_units<Law>::value)
+        for (std::size_t i = 0; i < Law::state_count; ++i) units[i] = py::str(Law::state_units[i]);
     cls.attr("state_names") = states;
+    cls.attr("state_units") = units;
     cls.def("__repr__", [](const Law& law) {
         std::string out = std::string(Law::name) + "(";
         const auto p = law.params();

@@ -610,6 +610,7 @@ def _fit_table5(args) -> int:
 def _fit(args) -> int:
     import numpy as np
 
+    from . import plots
     from .fit import LAW_PARAMETERS, identify
 
     out = args.out if args.out is not None else Path("out") / f"fit_{args.data.stem}"
@@ -642,7 +643,9 @@ def _fit(args) -> int:
         pd.DataFrame({"t": result.t, "relative_velocity": np.interp(result.t, record["time"], record["velocity"]),
                       "measured": result.measured, "model": result.model,
                       "residual": result.residuals}).to_csv(paths[1], index=False, float_format="%.10g")
-        paths.append(_fit_figure(result, record, directory / "fit.png", title=args.data.name))
+        velocity = np.interp(result.t, record["time"], record["velocity"])
+        paths.append(plots.save(plots.identification_figure(result, velocity, title=args.data.name),
+                                directory / "fit.png"))
         return paths + _metadata(args, directory, rigs=[result.rig] if result.rig is not None else [],
                                  stats={"n_evaluations": result.n_evaluations, "n_failed": result.n_failed,
                                         "elapsed_s": result.elapsed},
@@ -715,29 +718,6 @@ def _read_record(path: Path, columns: Dict[str, str]) -> Dict[str, Any]:
     return out
 
 
-def _fit_figure(result, record, path: Path, *, title: str) -> Path:
-    """Measured and fitted force over time, and against the relative velocity (the hysteresis loops)."""
-    import numpy as np
-    from matplotlib.figure import Figure
-
-    from .plots import save
-
-    figure = Figure(figsize=(11.0, 4.5), layout="constrained")
-    left, right = figure.subplots(1, 2)
-    velocity = np.interp(result.t, record["time"], record["velocity"])
-    result.plot(ax=left, color="tab:red", linewidth=1.2)
-    right.plot(velocity, result.measured, ".", markersize=2, color="grey", label="measured")
-    right.plot(velocity, result.model, color="tab:red", linewidth=1.0, label=f"{result.law_name} fit")
-    right.set_xlabel("relative velocity [m/s]")
-    right.set_ylabel("friction force [N]")
-    right.legend(fontsize=8)
-    for ax in (left, right):
-        ax.grid(True, alpha=0.3)
-    figure.suptitle(f"{title}: {result.law_name}, rms residual {result.rms_residual:.4g} N, "
-                    f"R^2 = {result.r_squared:.5f}", fontsize=10)
-    return save(figure, path)
-
-
 #: torque-drag's default string: 5" drill pipe (OD 127 mm, ID 108.6 mm) over 150 m of 6 1/2" x 2 13/16" collars
 DEFAULT_STRING = "0.127:0.1086:*,0.1651:0.0714:150"
 
@@ -786,23 +766,10 @@ def _string_sections(spec: str, depth: Optional[float], survey_depth: float):
 
 
 # ----------------------------------------------------------------------------------------------- torque-drag
-@dataclasses.dataclass(frozen=True)
-class _Tool:
-    """A --oscillator entry: its depth (m MD at the full bit depth, or ``above_bit`` metres above the bit), force
-    amplitude [N] and frequency [Hz]."""
+def _oscillators(spec: str) -> List[Any]:
+    """--oscillator MD:FORCE:FREQ[,...]; MD may be 'bit-H' (H metres above the bit): wells.PlannedOscillator each."""
+    from .wells import PlannedOscillator
 
-    depth: Optional[float]
-    above_bit: Optional[float]
-    force: float
-    frequency: float
-
-    def height(self, bit_depth: float) -> float:
-        """Metres above the bit when the bit is at ``bit_depth`` (the full string)."""
-        return self.above_bit if self.above_bit is not None else bit_depth - self.depth
-
-
-def _oscillators(spec: str) -> List[_Tool]:
-    """--oscillator MD:FORCE:FREQ[,...]; MD may be 'bit-H' (H metres above the bit)."""
     tools = []
     for index, part in enumerate(p.strip() for p in spec.split(",")):
         fields = part.split(":")
@@ -824,18 +791,8 @@ def _oscillators(spec: str) -> List[_Tool]:
                 rule = "positive" if name == "FREQ" else "non-negative"
                 raise argparse.ArgumentTypeError(f"tool {index} {part!r}: {name} must be {rule} and finite "
                                                  f"(got {value:g})")
-        tools.append(_Tool(depth, above, force, frequency))
+        tools.append(PlannedOscillator(depth, above, force, frequency))
     return tools
-
-
-def _placed(tools: Sequence[_Tool], full_depth: float, bit_depth: float) -> List[Any]:
-    """The HydraulicOscillators with the bit at ``bit_depth``: each keeps its height above the bit; those that
-    would be above the surface are left out (the string is not that long yet)."""
-    from . import HydraulicOscillator
-
-    return [HydraulicOscillator(measured_depth=bit_depth - tool.height(full_depth), force_amplitude=tool.force,
-                                frequency=tool.frequency)
-            for tool in tools if bit_depth - tool.height(full_depth) >= 0.0]
 
 
 def _torque_drag(args) -> int:
@@ -876,37 +833,25 @@ def _torque_drag(args) -> int:
     operations = list(wells.BROOMSTICK_OPERATIONS)
     if args.wob > 0.0:
         operations += ["sliding_drilling", "rotary_drilling"]
-    tables, summary = [], []
     vibrated = zone = zone_summary = placements = None
+    study = dict(conditions=conditions, estimate=estimate, cased_friction=args.cased_mu)
     try:
         string = DrillString(sections)
         model = wells.soft_string(survey, string, element_length=args.element_length)
-        for mu in args.mu:
-            friction = _friction(args, mu)
-            for op in operations:
-                result = model.run(op, **conditions, **friction)
-                table = wells.node_table(result)
-                table.insert(0, "node", range(len(table)))
-                table.insert(0, "friction_factor", mu)
-                table.insert(0, "operation", op)
-                tables.append(table)
-                summary.append({"operation": op, "friction_factor": mu, "hook_load_kN": result.hook_load / 1e3,
-                                "surface_torque_kNm": result.surface_torque / 1e3,
-                                "sinusoidally_buckled_nodes": int(result.sinusoidally_buckled.sum()),
-                                "helically_buckled_nodes": int(result.helically_buckled.sum())})
+        nodes, summary_frame = wells.operations_table(model, args.mu, operations, conditions, args.cased_mu)
         broom_conditions = dict(conditions)
         if args.cased_mu is not None:
             broom_conditions["cased_hole_friction"] = args.cased_mu
         chart = wells.broomstick(survey, string, args.mu, depth_step=args.depth_step,
                                  element_length=args.element_length, **broom_conditions)
         if tools:
-            vibrated = _vibrated_broomstick(args, survey, string, chart, tools, depth, conditions, estimate)
-            zone, zone_summary = _zone_of_influence(args, model, tools, depth, conditions, estimate)
+            vibrated = wells.oscillator_broomstick(survey, string, chart, tools, depth, args.mu,
+                                                   element_length=args.element_length, **study)
+            zone, zone_summary = wells.zone_of_influence(model, tools, depth, args.operation, args.mu, **study)
         if args.place:
-            placements = _placements(args, model, tools, conditions, estimate)
+            placements = wells.sliding_placements(model, tools, args.mu, **study)
     except InvalidParameterError as error:
         raise CommandError(f"{args.survey}: {error}", 2) from None
-    summary_frame = pd.DataFrame(summary)
     print(f"{args.survey}: {len(survey)} stations to MD {survey.measured_depth[-1]:g} m; bit at {depth:g} m, "
           f"{model.elements} elements of {model.element_length:.4g} m")
     print(summary_frame.to_string(index=False, float_format=lambda v: f"{v:.6g}"))
@@ -924,7 +869,7 @@ def _torque_drag(args) -> int:
 
     def write(directory: Path) -> List[Path]:
         paths = [directory / "torque_drag.csv", directory / "broomstick.csv", directory / "trajectory.csv"]
-        pd.concat(tables, ignore_index=True).to_csv(paths[0], index=False, float_format="%.10g")
+        nodes.to_csv(paths[0], index=False, float_format="%.10g")
         chart.frame.to_csv(paths[1], index=False, float_format="%.10g")
         wells.trajectory(survey).to_csv(paths[2], index=False, float_format="%.10g")
         paths.append(plots.save(plots.broomstick_figure(chart, title=str(args.survey.name)),
@@ -936,7 +881,7 @@ def _torque_drag(args) -> int:
                                 ("oscillator_summary.csv", zone_summary)):
                 paths.append(directory / name)
                 frame.to_csv(paths[-1], index=False, float_format="%.10g")
-            paths.append(plots.save(_vibrated_figure(vibrated, zone, title=args.survey.name),
+            paths.append(plots.save(plots.oscillator_broomstick_figure(vibrated, zone, title=args.survey.name),
                                     directory / "oscillator_broomstick.png"))
         if placements is not None:
             rows = [pd.DataFrame({"friction_factor": mu, "tool_depth": p.scan_depths,
@@ -946,7 +891,8 @@ def _torque_drag(args) -> int:
                                   "best_weight_on_bit": p.weight_on_bit}) for mu, p in placements.items()]
             paths.append(directory / "placement.csv")
             pd.concat(rows, ignore_index=True).to_csv(paths[-1], index=False, float_format="%.10g")
-            paths.append(plots.save(_placement_figure(placements, title=args.survey.name), directory / "placement.png"))
+            paths.append(plots.save(plots.placements_figure(placements, title=args.survey.name),
+                                    directory / "placement.png"))
         return paths + _metadata(args, directory, extra={
             "survey": str(args.survey), "string": args.string, "bit_depth_m": depth, "friction_factors": args.mu,
             "conditions": conditions, "oscillators": [dataclasses.asdict(t) for t in tools], "estimate": estimate})
@@ -954,143 +900,6 @@ def _torque_drag(args) -> int:
     written = _write(out, write)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
-
-
-def _friction(args, mu: float) -> Dict[str, float]:
-    return dict(open_hole_friction=mu, cased_hole_friction=mu if args.cased_mu is None else args.cased_mu)
-
-
-def _vibrated_broomstick(args, survey, string, chart, tools, full_depth, conditions, estimate):
-    """Hook load and surface torque against bit depth with and without the tools, at the broomstick's depths and
-    operations (plus sliding without weight on bit, where a tool matters most)."""
-    import pandas as pd
-
-    from . import wells
-
-    operations = list(dict.fromkeys(list(chart.operations) + ["sliding_drilling"]
-                                    + (["rotary_drilling"] if args.wob > 0.0 else [])))
-    rows = []
-    for bit_depth in sorted(set(chart.frame["bit_depth"])):
-        placed = _placed(tools, full_depth, bit_depth)
-        model = wells.soft_string(survey, wells.string_to_depth(string, bit_depth), element_length=args.element_length)
-        for mu in args.mu:
-            for op in operations:
-                r = model.oscillators(op, placed, **conditions, **_friction(args, mu), **estimate)
-                rows.append({"bit_depth": bit_depth, "friction_factor": mu, "operation": op, "tools": len(placed),
-                             "hook_load_plain": r.plain.hook_load, "hook_load_tool": r.vibrated.hook_load,
-                             "surface_torque_plain": r.plain.surface_torque,
-                             "surface_torque_tool": r.vibrated.surface_torque,
-                             "zone_length": r.zone_length})
-    return pd.DataFrame(rows)
-
-
-def _zone_of_influence(args, model, tools, depth, conditions, estimate):
-    """Per element at the full depth, for --operation and each friction factor: the tools' vibration amplitude,
-    the friction factors and reduction, in the zone or not; and one summary row per friction factor."""
-    import numpy as np
-    import pandas as pd
-
-    placed = _placed(tools, depth, depth)
-    nodes = np.asarray(model.node_depths)
-    top, bottom = nodes[:-1], nodes[1:]
-    frames, summary = [], []
-    for mu in args.mu:
-        r = model.oscillators(args.operation, placed, **conditions, **_friction(args, mu), **estimate)
-        reduction = np.asarray(r.reduction)
-        in_zone = (top >= r.zone_top - 1e-9) & (bottom <= r.zone_bottom + 1e-9) & (r.zone_length > 0.0)
-        frames.append(pd.DataFrame({"friction_factor": mu, "element": np.arange(len(reduction)),
-                                    "top_depth": top, "bottom_depth": bottom,
-                                    "vibration_amplitude": r.vibration_amplitude, "axial_factor": r.axial_factor,
-                                    "circumferential_factor": r.circumferential_factor, "reduction": reduction,
-                                    "in_zone": in_zone & (reduction > 0.0)}))
-        summary.append({"friction_factor": mu, "zone_top_m": r.zone_top, "zone_bottom_m": r.zone_bottom,
-                        "zone_length_m": r.zone_length, "hook_load_kN": r.plain.hook_load / 1e3,
-                        "hook_load_tool_kN": r.vibrated.hook_load / 1e3,
-                        "hook_load_change_kN": r.hook_load_change / 1e3,
-                        "surface_torque_change_kNm": r.surface_torque_change / 1e3,
-                        "weight_on_bit_kN": args.wob / 1e3, "converged": bool(r.converged)})
-    return pd.concat(frames, ignore_index=True), pd.DataFrame(summary)
-
-
-def _placements(args, model, tools, conditions, estimate):
-    """friction factor -> wells.Placement of one tool while sliding at the hook load that puts --wob on the bit."""
-    from . import wells
-
-    force, frequency = (tools[0].force, tools[0].frequency) if tools else (50e3, 18.0)
-    out = {}
-    for mu in args.mu:
-        friction = _friction(args, mu)
-        hook_load = model.run("sliding_drilling", **{**conditions, **friction}).hook_load
-        if hook_load < 0.0:
-            log.warning("mu = %g: sliding %g kN onto the bit needs a hook load of %.4g kN: the string would have to "
-                        "be pushed from the surface", mu, args.wob / 1e3, hook_load / 1e3)
-        rest = {k: v for k, v in conditions.items() if k != "weight_on_bit"}
-        out[mu] = wells.place_oscillators(_Estimated(model, estimate), hook_load, force_amplitude=force,
-                                          frequency=frequency, **rest, **friction)
-    return out
-
-
-class _Estimated:
-    """A SoftString whose placement objective takes the estimate's settings: place_oscillators' first parameter is
-    called ``model``, so its ``**keywords`` cannot carry the estimate's ``model`` keyword."""
-
-    def __init__(self, soft_string, estimate: Dict[str, str]) -> None:
-        self._soft_string, self._estimate = soft_string, estimate
-
-    def __getattr__(self, name: str):
-        return getattr(self._soft_string, name)
-
-    def sliding_weight_on_bit(self, hook_load, tools, **keywords):
-        return self._soft_string.sliding_weight_on_bit(hook_load, tools, **keywords, **self._estimate)
-
-
-def _vibrated_figure(frame, zone, *, title: str):
-    """Left: hook load against bit depth while sliding (at --wob), with and without the tools, and the pick-up load
-    for reference, per friction factor; right: the
-    friction reduction along the string at the full depth (the zone of influence)."""
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(12.0, 6.0), layout="constrained")
-    left, right = figure.subplots(1, 2)
-    styles = ["-", "--", "-.", ":"]
-    for k, (mu, part) in enumerate(frame[frame["operation"] == "trip_out"].groupby("friction_factor")):
-        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="tab:red", linestyle=styles[k % 4],
-                  linewidth=0.9, label=f"pick-up (trip_out), mu = {mu:g}")
-    for k, (mu, part) in enumerate(frame[frame["operation"] == "sliding_drilling"].groupby("friction_factor")):
-        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="grey", linestyle=styles[k % 4],
-                  linewidth=0.9, label=f"sliding, mu = {mu:g}, no tool")
-        left.plot(part["hook_load_tool"] / 1e3, part["bit_depth"], color="tab:green", linestyle=styles[k % 4],
-                  linewidth=1.3, label=f"sliding, mu = {mu:g}, with the tools")
-    left.invert_yaxis()
-    left.set_xlabel("hook load [kN]")
-    left.set_ylabel("bit depth, measured [m]")
-    left.legend(fontsize=7)
-    left.set_title("broomstick with hydraulic oscillators (each at its height above the bit)", fontsize=9)
-    for k, (mu, part) in enumerate(zone.groupby("friction_factor")):
-        middle = 0.5 * (part["top_depth"] + part["bottom_depth"])
-        right.plot(100.0 * part["reduction"], middle, linestyle=styles[k % 4], label=f"mu = {mu:g}")
-    right.invert_yaxis()
-    right.set_xlabel("friction reduction [%]")
-    right.set_ylabel("measured depth [m]")
-    right.legend(fontsize=7)
-    right.set_title("zone of influence at the full depth", fontsize=9)
-    for ax in (left, right):
-        ax.grid(True, alpha=0.3)
-    figure.suptitle(str(title), fontsize=10)
-    return figure
-
-
-def _placement_figure(placements, *, title: str):
-    """The weight on bit against the tool's depth, one curve per friction factor."""
-    from matplotlib.figure import Figure
-
-    from .plots import placement_axes
-
-    figure = Figure(figsize=(7.0, 4.0 * len(placements)), layout="constrained")
-    axes = figure.subplots(len(placements), 1, squeeze=False)[:, 0]
-    for ax, (mu, placement) in zip(axes, placements.items()):
-        placement_axes(placement, ax=ax, title=f"{title}, mu = {mu:g}")
-    return figure
 
 
 def _output_directory(args, file: Path, directory: Optional[str], stem: str, what: str = "scenario") -> Path:

@@ -369,7 +369,7 @@ class FieldString:
             rig, self.result, title=f"field string at w_set = {rig.surface_speed:g} rad/s, W = "
                                     f"{rig.weight_on_bit / 1e3:g} kN: torsional stick-slip of the bit"),
             directory / "speeds.png"))
-        written.append(plots.save(ds.stick_slip_map_figure(
+        written.append(plots.save(ds.string_stick_slip_map_figure(
             self.map, title=f"field string, {FIELD_T_END:g} s from rest per point, measured after "
                             f"{FIELD_TRANSIENT:g} s", point=FIELD_POINT), directory / "stick_slip_map.png"))
         return written

@@ -223,15 +223,15 @@ def stick_slip_map(rig: StringRig, surface_speeds: Sequence[float], weights_on_b
 def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Optional[tuple] = None, ax=None,
                          **style: Any):
     """One panel per (label, rig, result): bit and surface speed [rad/s] against t [s] within ``window``."""
-    from .plots import _panels, _style
+    from .plots import panels_for, with_style
 
-    figure, axes = _panels(ax, len(items), 10.0, 2.0 + 2.4 * len(items), rows=True)
+    figure, axes = panels_for(ax, len(items), 10.0, 2.0 + 2.4 * len(items), rows=True)
     for panel, (label, rig, result) in zip(axes, items):
         t = result.t
         inside = (t >= window[0]) & (t <= window[1]) if window is not None else np.ones(len(t), bool)
-        panel.plot(t[inside], surface_speed(rig, result)[inside], **_style({"color": "tab:blue", "lw": 1.0}, style),
+        panel.plot(t[inside], surface_speed(rig, result)[inside], **with_style({"color": "tab:blue", "lw": 1.0}, style),
                    label="surface")
-        panel.plot(t[inside], bit_speed(rig, result)[inside], **_style({"color": "tab:red", "lw": 1.0}, style),
+        panel.plot(t[inside], bit_speed(rig, result)[inside], **with_style({"color": "tab:red", "lw": 1.0}, style),
                    label="bit")
         panel.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label="set speed")
         panel.set_ylabel("speed [rad/s]")
@@ -245,11 +245,12 @@ def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Opt
 
 def speeds_figure(rig: StringRig, result: Result, *, title: str = "", ax=None, **style: Any):
     """Bit and surface speed [rad/s] over time (top), surface and bit torque [kN m] (bottom); ``ax``: two Axes."""
-    from .plots import _panels, _style
+    from .plots import panels_for, with_style
 
-    figure, (top, bottom) = _panels(ax, 2, 10.0, 6.5, rows=True)
+    figure, (top, bottom) = panels_for(ax, 2, 10.0, 6.5, rows=True)
     t = result.t
-    surface, bit = _style({"color": "tab:blue", "lw": 1.0}, style), _style({"color": "tab:red", "lw": 1.0}, style)
+    surface = with_style({"color": "tab:blue", "lw": 1.0}, style)
+    bit = with_style({"color": "tab:red", "lw": 1.0}, style)
     top.plot(t, surface_speed(rig, result), **surface, label="surface (top drive)")
     top.plot(t, bit_speed(rig, result), **bit, label="bit")
     top.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label=f"set speed {rig.surface_speed:g} rad/s")
@@ -265,12 +266,12 @@ def speeds_figure(rig: StringRig, result: Result, *, title: str = "", ax=None, *
     return figure
 
 
-def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None, ax=None,
-                          **style: Any):
+def string_stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None, ax=None,
+                                 **style: Any):
     """Peak bit speed / w_set (left) and the bit's stuck fraction (right) over (w_set, W [kN]); a black dot where
     the bit sticks, a red cross where the run failed, a star at ``point`` (w_set, W [N]); ``ax``: two Axes; style
     keywords go to the maps (pcolormesh: ``cmap`` replaces both colour maps)."""
-    from .plots import _panels
+    from .plots import panels_for
 
     speeds, weights = m.surface_speeds, m.weights_on_bit / 1e3
 
@@ -280,7 +281,7 @@ def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[t
         mid = 0.5 * (v[1:] + v[:-1])
         return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
 
-    figure, axes = _panels(ax, 2, 13.0, 5.2)
+    figure, axes = panels_for(ax, 2, 13.0, 5.2)
     xx, yy = np.meshgrid(speeds, weights, indexing="ij")
     for panel, (values, label, cmap) in zip(axes, [(m.peak_ratio, "peak bit speed / $\\omega_{set}$ [-]", "viridis"),
                                                     (m.stuck_fraction, "fraction of time the bit is stuck", "magma")]):
@@ -304,3 +305,14 @@ def stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[t
         share = f"{int(m.sticks.sum())} of {m.sticks.size} points stick-slip"
         figure.suptitle((title + "\n" if title else "") + f"stick-slip map of the string: {share}", fontsize=10)
     return figure
+
+
+def stick_slip_map_figure(m: StickSlipMap, **kwargs: Any):
+    """Deprecated name of :func:`string_stick_slip_map_figure` (:func:`frictionsim.plots.stick_slip_map_figure` is
+    the torsional rig's map); warns and draws the same figure."""
+    import warnings
+
+    warnings.warn("frictionsim.drillstring.stick_slip_map_figure is renamed string_stick_slip_map_figure "
+                  "(frictionsim.plots.stick_slip_map_figure draws the torsional rig's map)", DeprecationWarning,
+                  stacklevel=2)
+    return string_stick_slip_map_figure(m, **kwargs)

@@ -1,4 +1,4 @@
-"""Exceptions raised by frictionsim.
+"""Exceptions raised by frictionsim: the ground floor of the package (this module imports nothing of it).
 
 The C++ engine's exceptions arrive as these classes (translated in bindings/results.cpp):
 
@@ -18,7 +18,7 @@ Ctrl-C during a run raises ``KeyboardInterrupt`` (never a SimulationError), and 
 
 from __future__ import annotations
 
-from typing import Any, Optional
+from typing import Any
 
 __all__ = ["InvalidParameterError", "SimulationError", "ChatteringError", "BudgetExceededError", "AccuracyWarning"]
 
@@ -40,18 +40,9 @@ class SimulationError(RuntimeError):
     def __init__(self, message: str, time_reached: float, partial: Any = None) -> None:
         super().__init__(message)
         self.time_reached = float(time_reached)
-        self._partial = partial
-        self._period = None  # the rig's period, set by simulate()
-
-    @property
-    def partial(self) -> Optional["Result"]:  # noqa: F821 - forward reference
-        """The results recorded up to ``time_reached`` as a :class:`frictionsim.Result`, or None."""
-        from .result import Result
-
-        if self._partial is None or isinstance(self._partial, Result):
-            return self._partial
-        self._partial = Result(self._partial, period=self._period)
-        return self._partial
+        #: The results recorded up to ``time_reached`` as a :class:`frictionsim.Result` (the engine's translator
+        #: makes it), or None.
+        self.partial = partial
 
     def __reduce__(self):
         return (type(self), (str(self), self.time_reached, self.partial))

@@ -7,7 +7,8 @@ first (pure Python on h5py), then netCDF4.
 
 A :class:`frictionsim.Result` becomes a Dataset over the dimension ``time`` [s]: one variable per state, the friction
 force (a torque [N m] on the torsional rig, the total wall friction torque of a drill string) and the contact mode (a
-string's count of stuck wall contacts), each with its ``units`` where known; the switches are their own dimension
+string's count of stuck wall contacts), each with its ``units`` as the rig and its law declare them
+(:attr:`frictionsim.Result.units`, :mod:`frictionsim.outputs`); the switches are their own dimension
 ``event`` (time, switching function, modes, and the state before and after each over the dimension ``state``), and
 the stop conditions' crossings ``stop_event``. The Dataset's ``attrs`` hold the
 provenance record (:mod:`frictionsim.provenance`) as JSON under ``metadata``, plus its headline fields flat::
@@ -22,15 +23,15 @@ from __future__ import annotations
 
 import importlib
 import json
-import re
 from pathlib import Path
 from typing import Any, Dict, Mapping, Optional, Union
 
 import numpy as np
 
 from .errors import InvalidParameterError
+from .outputs import output_units
 
-__all__ = ["ENGINES", "STATE_UNITS", "PARQUET_ENGINES", "metadata", "netcdf_engine", "open_dataset",
+__all__ = ["ENGINES", "PARQUET_ENGINES", "column_units", "metadata", "netcdf_engine", "open_dataset",
            "parquet_engine", "require_xarray", "result_dataset", "state_units", "write_netcdf"]
 
 #: netCDF writers accepted by ``to_netcdf(engine=...)``, the netCDF-4 ones first: the default is the first installed.
@@ -41,27 +42,6 @@ _ENGINE_MODULES = {"h5netcdf": ("h5netcdf", "h5py"), "netcdf4": ("netCDF4",), "s
 PARQUET_ENGINES = ("pyarrow", "fastparquet")
 
 _EXTRA = "pip install 'frictionsim[io]'"
-
-#: Units [SI] of the states of the engine's rigs and laws, by name (the engine keeps no units on its states).
-STATE_UNITS: Dict[str, str] = {
-    "position": "m", "velocity": "m/s", "dahl_deflection": "m", "bristle_deflection": "m",
-    "friction_impulse": "N s", "friction_work": "J", "drive_work": "J", "disc_angle": "rad", "disc_speed": "rad/s",
-    "shaft_twist": "rad", "drive_speed": "rad/s", "current": "A", "speed_error_integral": "rad", "motor_work": "J",
-    "damping_work": "J", "electrical_work": "J", "ohmic_work": "J", "hoist_work": "J", "excitation_work": "J",
-    "wall_friction_work": "J", "bit_work": "J",
-    # the scenario time series' derived columns (frictionsim.scenario.rigs, RigKind.columns)
-    "surface_position": "m", "surface_velocity": "m/s", "relative_displacement": "m", "relative_velocity": "m/s",
-    "drive_force": "N", "disc_acceleration": "rad/s^2", "friction_torque": "N m", "shaft_torque": "N m",
-    "voltage": "V", "surface_torque": "N m", "bit_torque": "N m", "wall_friction_torque": "N m",
-    "bit_speed": "rad/s", "surface_speed": "rad/s",
-}
-#: Name patterns of states numbered per node or block.
-_PATTERN_UNITS = ((re.compile(r"theta_\d+$"), "rad"), (re.compile(r"omega_\d+$"), "rad/s"),
-                  (re.compile(r"u_\d+$"), "m"), (re.compile(r"v_\d+$"), "m/s"),  # a string's axial motion
-                  (re.compile(r"block_deflection_\d+$"), "m"))
-#: Rigs whose friction acts as a torque: friction_force is in N m there, its impulse in N m s.
-_TORQUE_RIGS = ("TorsionalRig", "StringRig")
-
 
 def require_xarray():
     """The xarray module, imported on first use (it is an optional dependency).
@@ -149,32 +129,39 @@ def parquet_engine() -> str:
                       f"{_EXTRA}")
 
 
-def state_units(name: str, rig_type: Optional[str] = None) -> Optional[str]:
-    """The SI unit of a state or output column.
+def state_units(name: str, source: Any = None) -> Optional[str]:
+    """The SI unit of a state or output column, as the rig and its law declare it.
 
     Parameters
     ----------
     name : str
         A state (``disc_speed``, ``theta_3``, ...) or an output column (``friction_force``, ``t``, ...).
-    rig_type : str, optional
-        The rig's class name: it tells a force from a torque (``friction_force`` is in N m on the torsional rig
-        and a drill string).
+    source : Result, rig, mapping or pandas DataFrame, optional
+        Where the column comes from: a :class:`frictionsim.Result` (its :attr:`~frictionsim.Result.units`), a rig
+        (:func:`frictionsim.outputs.output_units`), a mapping of column -> unit, or a frame carrying one in
+        ``attrs["units"]``; without it only ``t`` [s] is known.
 
     Returns
     -------
     str or None
-        The unit ("rad/s", "N m", ...), or None when not known.
+        The unit ("rad/s", "N m", ...), or None when not declared.
     """
-    torque = rig_type in _TORQUE_RIGS
-    if name == "friction_force":
-        return "N m" if torque else "N"
-    if name == "friction_impulse":
-        return "N m s" if torque else "N s"
-    if name == "t":
-        return "s"
-    if name in STATE_UNITS:
-        return STATE_UNITS[name]
-    return next((unit for pattern, unit in _PATTERN_UNITS if pattern.match(name)), None)
+    return column_units(source).get(name, "s" if name == "t" else None)
+
+
+def column_units(source: Any) -> Dict[str, str]:
+    """Column -> SI unit of ``source`` (see :func:`state_units`); {} when it declares none."""
+    if source is None:
+        return {}
+    if isinstance(source, Mapping):
+        return dict(source)
+    attrs = getattr(source, "attrs", None)
+    if isinstance(attrs, Mapping):  # a frame: the units its maker recorded
+        return dict(attrs.get("units", {}))
+    units = getattr(source, "units", None)
+    if isinstance(units, Mapping):  # a Result
+        return dict(units)
+    return output_units(source)
 
 
 # ------------------------------------------------------------------------------------------------ attrs
@@ -260,16 +247,16 @@ def result_dataset(result) -> Any:
     """
     xr = require_xarray()
     record = result.metadata
-    rigs = record.get("rigs") or [{}]
-    rig_type = rigs[0].get("type")
+    units = result.units
     time = {"units": "s", "long_name": "time"}
     data: Dict[str, Any] = {}
     for i, name in enumerate(result.state_names):
-        data[name] = ("time", np.array(result.states[:, i]), _units(name, rig_type))
+        data[name] = ("time", np.array(result.states[:, i]), _units(name, units))
+    torque = units.get("friction_force") == "N m"
     data["friction_force"] = ("time", np.array(result.friction_force),
-                              dict(_units("friction_force", rig_type),
-                                   long_name="friction torque" if rig_type in _TORQUE_RIGS else "friction force"))
-    if rig_type == "StringRig":  # a string's mode counts its stuck wall contacts
+                              dict(_units("friction_force", units),
+                                   long_name="friction torque" if torque else "friction force"))
+    if units.get("mode") == "1":  # a string's mode counts its stuck wall contacts
         mode = {"long_name": "stuck wall contacts", "units": "1"}
     else:
         mode = {"long_name": "contact mode", "flag_values": np.array([-1, 0, 1], dtype=result.mode.dtype),
@@ -286,8 +273,8 @@ def result_dataset(result) -> Any:
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-def _units(name: str, rig_type: Optional[str]) -> Dict[str, str]:
-    unit = state_units(name, rig_type)
+def _units(name: str, units: Mapping[str, str]) -> Dict[str, str]:
+    unit = units.get(name)
     return {} if unit is None else {"units": unit}
 
 

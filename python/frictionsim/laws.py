@@ -16,14 +16,14 @@ import inspect
 import re
 from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 
-from . import _core
+from ._core import FRICTION_LAWS
 
 __all__ = ["Parameter", "UnknownLawError", "law_class", "law_classes", "parameters"]
 
 def law_classes() -> Dict[str, type]:
     """Law key -> engine class, e.g. ``{"coulomb": frictionsim.Coulomb, ..., "elasto_plastic": ...}``: the
     engine's registry ``frictionsim._core.FRICTION_LAWS`` (each class's ``key``), in its order."""
-    return {cls.key: cls for cls in _core.FRICTION_LAWS}
+    return {cls.key: cls for cls in FRICTION_LAWS}
 
 
 class UnknownLawError(KeyError, ValueError):

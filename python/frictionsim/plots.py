@@ -8,9 +8,9 @@ switched, so these functions work headless (CI, ``frictionsim`` on a server) and
 :func:`save` writes a PNG of a Figure or of an Axes' figure and leaves it as it was (``release=True`` frees the
 contents of a figure frictionsim made, for a pipeline done with it; a figure of yours is never cleared).
 
-The single-panel functions are named ``*_axes`` and return the Axes they drew on; the multi-panel ones
+The single-panel functions are named ``*axes_for`` and return the Axes they drew on; the multi-panel ones
 ``*_figure`` and return the Figure. Five single-panel functions were once named ``*_figure`` (when every function
-made its own figure); those names stay as aliases of the ``*_axes`` ones and, like them, return the Axes:
+made its own figure); those names stay as aliases of the ``*axes_for`` ones and, like them, return the Axes:
 ``friction_force_figure``, ``drive_force_figure``, ``power_law_figure``, ``reduction_sweep_figure``,
 ``phase_portrait_figure``.
 
@@ -34,10 +34,10 @@ from .errors import InvalidParameterError
 
 __all__ = ["broomstick_axes", "broomstick_figure", "disc_speed_figure", "drive_force_axes", "drive_force_figure",
            "friction_force_axes", "friction_force_figure", "friction_torque_hysteresis_figure", "hysteresis_figure",
-           "law_comparison_figure", "phase_portrait_axes", "phase_portrait_figure", "placement_axes",
-           "power_law_axes", "power_law_figure", "reduction_sweep_axes", "reduction_sweep_figure", "save",
-           "stick_slip_map_axes", "stick_slip_map_figure", "sweep_axes", "time_series_axes", "well_path_axes",
-           "well_path_figure"]
+           "identification_figure", "law_comparison_figure", "oscillator_broomstick_figure", "phase_portrait_axes",
+           "phase_portrait_figure", "placement_axes", "placements_figure", "power_law_axes", "power_law_figure",
+           "reduction_sweep_axes", "reduction_sweep_figure", "save", "stick_slip_map_axes", "stick_slip_map_figure",
+           "sweep_axes", "time_series_axes", "well_path_axes", "well_path_figure"]
 
 Window = Optional[Tuple[float, float]]
 
@@ -55,7 +55,7 @@ def _new_figure(width: float, height: float):
     return figure
 
 
-def _axes(ax, width: float = 8.0, height: float = 4.5):
+def axes_for(ax, width: float = 8.0, height: float = 4.5):
     """``ax``, or the Axes of a new (non-pyplot) figure."""
     if ax is not None:
         if not hasattr(ax, "plot") or not hasattr(ax, "figure"):
@@ -64,7 +64,7 @@ def _axes(ax, width: float = 8.0, height: float = 4.5):
     return _new_figure(width, height).subplots()
 
 
-def _panels(ax, n: int, width: float, height: float, rows: bool = False):
+def panels_for(ax, n: int, width: float, height: float, rows: bool = False):
     """(figure, list of n Axes): the given sequence ``ax`` (one Axes per panel), or a new figure's n panels side by
     side (``rows``: stacked, sharing t)."""
     if ax is None:
@@ -79,7 +79,7 @@ def _panels(ax, n: int, width: float, height: float, rows: bool = False):
     return axes[0].figure, axes
 
 
-def _style(defaults: Dict[str, Any], kwargs: Dict[str, Any]) -> Dict[str, Any]:
+def with_style(defaults: Dict[str, Any], kwargs: Dict[str, Any]) -> Dict[str, Any]:
     """The caller's style keywords over a plot's defaults (``lw`` replaces ``linewidth``, ``c`` ``color``, ...)."""
     aliases = {"lw": "linewidth", "ls": "linestyle", "c": "color", "ms": "markersize", "mec": "markeredgecolor",
                "mfc": "markerfacecolor", "mew": "markeredgewidth"}
@@ -100,7 +100,11 @@ def _result_frame(result):
     if "disc_speed" in result.state_names:
         columns["friction_torque"] = result.friction_force
     columns["mode"] = result.mode
-    return pd.DataFrame(columns)
+    frame = pd.DataFrame(columns)
+    frame.attrs["units"] = units = dict(result.units)
+    if "friction_torque" in columns and "friction_force" in units:
+        units["friction_torque"] = units["friction_force"]
+    return frame
 
 
 def _is_result(data) -> bool:
@@ -125,13 +129,14 @@ def _traces(data) -> List[Tuple[str, Any]]:
     return out
 
 
-def _rig_type(data) -> Optional[str]:
-    """The class name of the rig behind ``data``'s first Result (for units: a torque or a force), or None."""
-    items = [data] if _is_result(data) or not isinstance(data, (list, tuple)) else [d for _, d in data]
-    for item in items:
-        if _is_result(item):
-            return (item.metadata.get("rigs") or [{}])[0].get("type")
-    return None
+def _units(traces) -> Dict[str, str]:
+    """Column -> unit as the traces' makers declared them (the first trace's where they differ)."""
+    from .io import column_units
+
+    units: Dict[str, str] = {}
+    for _, frame in reversed(traces):
+        units.update((k, v) for k, v in column_units(frame).items() if v)
+    return units
 
 
 def _require(traces, columns: Sequence[str], plot: str) -> None:
@@ -191,11 +196,11 @@ def _time_series_figure(traces, column: str, ylabel: str, subtitle: str, *, titl
     traces = _traces(traces)
     if not any(column in frame for _, frame in traces):
         _require(traces[:1], [column], subtitle.split(" vs ")[0])
-    ax = _axes(ax)
+    ax = axes_for(ax)
     for label, frame in traces:
         if column in frame:
             part = _window(frame, window)
-            ax.plot(part["t"], part[column], **_style(dict(label=label, linewidth=1.2), kwargs))
+            ax.plot(part["t"], part[column], **with_style(dict(label=label, linewidth=1.2), kwargs))
     if zero_line:
         ax.axhline(0.0, color="0.6", linewidth=0.6)
     ax.set_xlabel("time t [s]")
@@ -210,10 +215,9 @@ def _time_series_figure(traces, column: str, ylabel: str, subtitle: str, *, titl
 def time_series_axes(data, columns: Union[str, Sequence[str], None] = None, ax=None, *, window: Window = None,
                      title: str = "", **kwargs):
     """``columns`` of a Result (or a time-series frame, or (label, data) traces) against time t [s]: one line per
-    column and trace, labelled with its unit where known (:func:`frictionsim.io.state_units`); default the
-    friction force. ``window``: (t_start, t_end) [s]; style keywords go to every line. Returns the Axes."""
-    from .io import state_units
-
+    column and trace, labelled with its unit where declared (a Result's :attr:`~frictionsim.Result.units`, a
+    frame's ``attrs["units"]``); default the friction force. ``window``: (t_start, t_end) [s]; style keywords go to
+    every line. Returns the Axes."""
     traces = _traces(data)
     if columns is None:
         columns = ["friction_force"]
@@ -223,18 +227,18 @@ def time_series_axes(data, columns: Union[str, Sequence[str], None] = None, ax=N
     if not columns:
         raise InvalidParameterError("time_series_axes: columns must name at least one column", "columns")
     _require(traces, columns, "time_series_axes")
-    rig_type = _rig_type(data)
-    ax = _axes(ax)
+    units = _units(traces)
+    ax = axes_for(ax)
     for label, frame in traces:
         part = _window(frame, window)
         for column in columns:
-            unit = state_units(column, rig_type)
+            unit = units.get(column)
             name = f"{column} [{unit}]" if unit else column
             text = f"{label}: {name}" if label else name
-            ax.plot(part["t"], part[column], **_style(dict(label=text, linewidth=1.2), kwargs))
+            ax.plot(part["t"], part[column], **with_style(dict(label=text, linewidth=1.2), kwargs))
     ax.set_xlabel("time t [s]")
     if len(columns) == 1:
-        unit = state_units(columns[0], rig_type)
+        unit = units.get(columns[0])
         ax.set_ylabel(f"{columns[0]} [{unit}]" if unit else columns[0])
     ax.grid(True, alpha=0.3)
     if len(columns) > 1 or len(traces) > 1:
@@ -256,10 +260,10 @@ def hysteresis_figure(traces, *, title: str = "", window: Window = None, ax=None
     two Axes); returns the Figure."""
     traces = _traces(traces)
     _require(traces, ["relative_displacement", "relative_velocity", "friction_force"], "hysteresis_figure")
-    figure, (left, right) = _panels(ax, 2, 11.0, 4.5)
+    figure, (left, right) = panels_for(ax, 2, 11.0, 4.5)
     for label, frame in traces:
         part = _window(frame, window)
-        style = _style(dict(label=label, linewidth=1.0), kwargs)
+        style = with_style(dict(label=label, linewidth=1.0), kwargs)
         left.plot(1e3 * part["relative_displacement"], part["friction_force"], **style)
         right.plot(part["relative_velocity"], part["friction_force"], **style)
     left.set_xlabel("relative displacement $x - u$ [mm]")
@@ -289,14 +293,14 @@ def power_law_axes(table4, fits, printed=None, *, ax=None, **kwargs):
     :func:`frictionsim.data.table5` to draw the printed laws dashed. Style keywords go to the refit lines. Returns
     the Axes.
     """
-    ax = _axes(ax, 8.0, 5.5)
+    ax = axes_for(ax, 8.0, 5.5)
     for i, (lubricant, fit) in enumerate(fits.iterrows()):
         color = f"C{i}"
         runs = table4[table4["lubricant"] == lubricant]
         name = runs["lubricant_printed"].iloc[0] if "lubricant_printed" in runs and len(runs) else lubricant
         ax.loglog(runs["velocity_ratio"], runs["mu_df"], "o", color=color, label=f"{name} (Table 4)")
         x = np.geomspace(runs["velocity_ratio"].min(), runs["velocity_ratio"].max(), 50)
-        ax.loglog(x, fit["eta_prime"] * x ** fit["exponent"], **_style(dict(
+        ax.loglog(x, fit["eta_prime"] * x ** fit["exponent"], **with_style(dict(
             linestyle="-", color=color,
             label=f"refit $\\mu_{{df}}$ = {fit['eta_prime']:.4f} $(v_a/v_d)^{{{fit['exponent']:.5f}}}$"), kwargs))
         if printed is not None:
@@ -319,13 +323,13 @@ def reduction_sweep_axes(frame, columns: Sequence[Tuple[str, str]], *, title: st
     Columns named ``*closed*`` are drawn as a dashed black line (closed forms), ``*table*`` as markers (data);
     style keywords go to every line. Returns the Axes.
     """
-    ax = _axes(ax)
+    ax = axes_for(ax)
     x = frame["velocity_ratio"]
     for column, label in columns:
         style = {"closed": dict(linestyle="--", color="k", linewidth=1.0), "table": dict(linestyle="none",
                  marker="s", markersize=8)}
         kind = next((k for k in style if k in column), None)
-        ax.plot(x, 100.0 * frame[column], **_style(dict(style.get(kind, dict(marker="o")), label=label), kwargs))
+        ax.plot(x, 100.0 * frame[column], **with_style(dict(style.get(kind, dict(marker="o")), label=label), kwargs))
     ax.set_xscale("log")
     ax.set_xlabel("velocity ratio $v_d/v_a$ [-]")
     ax.set_ylabel("friction reduction $1 - F_{df}/(\\mu F_N)$ [%]")
@@ -344,11 +348,11 @@ def disc_speed_figure(traces, *, title: str = "", window: Window = None,
     traces = _traces(traces)
     _require(traces, ["disc_speed", "drive_speed"], "disc_speed_figure")
     n = max(1, len(traces))
-    figure, axes = _panels(ax, n, 10.0, 1.2 + 2.1 * n, rows=True)
+    figure, axes = panels_for(ax, n, 10.0, 1.2 + 2.1 * n, rows=True)
     for i, (ax, (label, frame)) in enumerate(zip(axes, traces)):
         part = _window(frame, window)
-        ax.plot(part["t"], part["disc_speed"], **_style(dict(color="C0", linewidth=1.2, label="disc $\\omega_2$"),
-                                                        kwargs))
+        ax.plot(part["t"], part["disc_speed"], **with_style(dict(color="C0", linewidth=1.2, label="disc $\\omega_2$"),
+                                                            kwargs))
         ax.plot(part["t"], part["drive_speed"], color="C3", linewidth=1.0, linestyle="--",
                 label="drive $\\omega_3$ (load side)")
         if reference_speeds is not None and i < len(reference_speeds):
@@ -383,12 +387,12 @@ def friction_torque_hysteresis_figure(traces, *, title: str = "", window: Window
     not drawn). Needs the scenario's timeseries (disc_acceleration). Returns the Figure."""
     traces = _traces(traces)
     _require(traces, ["disc_speed", "disc_acceleration", "friction_torque"], "friction_torque_hysteresis_figure")
-    figure, axes = _panels(ax, 3, 15.0, 4.8)
+    figure, axes = panels_for(ax, 3, 15.0, 4.8)
     for label, frame in traces:
         w, al, torque = _broken_at_switches(_window(frame, window), "disc_speed", "disc_acceleration",
                                             "friction_torque")
-        line, = axes[0].plot(w, torque, **_style(dict(linewidth=1.0, label=label), kwargs))
-        same = _style(dict(linewidth=1.0, label=label), dict(kwargs, color=line.get_color()))
+        line, = axes[0].plot(w, torque, **with_style(dict(linewidth=1.0, label=label), kwargs))
+        same = with_style(dict(linewidth=1.0, label=label), dict(kwargs, color=line.get_color()))
         axes[1].plot(al, torque, **same)
         axes[2].plot(w, al, **same)
     labels = [("disc speed $\\omega_2$ [rad/s]", "friction torque $T_{f2}$ [N m]", "(a) torque vs speed (Fig. 5a)"),
@@ -417,10 +421,10 @@ def phase_portrait_axes(traces, *, title: str = "", window: Window = None,
     (mean twist, w_ref), marked x (None: no marker). Style keywords go to the curves. Returns the Axes."""
     traces = _traces(traces)
     _require(traces, ["shaft_twist", "disc_speed"], "phase_portrait_axes")
-    ax = _axes(ax, 10.0, 5.5)
+    ax = axes_for(ax, 10.0, 5.5)
     for i, (label, frame) in enumerate(traces):
         part = _window(frame, window)
-        line, = ax.plot(part["shaft_twist"], part["disc_speed"], **_style(dict(linewidth=1.0, label=label), kwargs))
+        line, = ax.plot(part["shaft_twist"], part["disc_speed"], **with_style(dict(linewidth=1.0, label=label), kwargs))
         if equilibria is not None and i < len(equilibria) and equilibria[i] is not None:
             ax.plot(*equilibria[i], marker="x", markersize=9, markeredgewidth=2, color=line.get_color(),
                     linestyle="none")
@@ -474,8 +478,9 @@ def stick_slip_map_axes(stick_slip_map, measure: str = "severity", ax=None, *,
     values = np.asarray(getattr(m, attribute), dtype=float)
     if measure == "frequency":
         values = np.where(values > 0, values, np.nan)  # no oscillation: no frequency to colour
-    ax = _axes(ax, 6.5, 5.2)
-    mesh = ax.pcolormesh(_edges(speeds), _edges(forces), values.T, **_style(dict(cmap=cmap, shading="flat"), kwargs))
+    ax = axes_for(ax, 6.5, 5.2)
+    mesh = ax.pcolormesh(_edges(speeds), _edges(forces), values.T,
+                         **with_style(dict(cmap=cmap, shading="flat"), kwargs))
     if colorbar:
         ax.figure.colorbar(mesh, ax=ax, label=label)
     if annotate and values.size <= 120:
@@ -507,7 +512,7 @@ def stick_slip_map_figure(stick_slip_map, *, title: str = "", point: Optional[Tu
     carry a black dot, ``point`` (paper 001's Fig. 7 operating point) a star, failed runs a red cross. Returns the
     Figure."""
     measures = [measures] if isinstance(measures, str) else list(measures)
-    figure, axes = _panels(ax, len(measures), 6.5 * len(measures), 5.2)
+    figure, axes = panels_for(ax, len(measures), 6.5 * len(measures), 5.2)
     for panel, measure in zip(axes, measures):
         stick_slip_map_axes(stick_slip_map, measure, panel, point=point, **kwargs)
     stick = np.asarray(stick_slip_map.stick_slip, dtype=bool)
@@ -521,13 +526,13 @@ def law_comparison_figure(frame, *, title: str = "", paper: Optional[dict] = Non
                           natural_frequency: Optional[float] = None, ax=None, **kwargs):
     """Limit cycle per friction law (the DataFrame of :func:`frictionsim.torsional.compare_laws`: law, frequency
     [Hz], peak [rad/s], stick_slip): bars of the stick-slip frequency and the peak disc speed beside paper 001's
-    Fig. 7 values (``paper``: :data:`frictionsim.torsional.FIG7`) and the natural frequency f_n [Hz]. ``ax``: two
+    Fig. 7 values (``paper``: :data:`frictionsim.data.PAPER001_FIG7`) and the natural frequency f_n [Hz]. ``ax``: two
     Axes; style keywords go to the bars. Returns the Figure."""
     if paper is None:
-        from .torsional import FIG7 as paper
+        from .data import PAPER001_FIG7 as paper
     if natural_frequency is None and "natural_frequency" in frame:
         natural_frequency = float(frame["natural_frequency"].iloc[0])
-    figure, (left, right) = _panels(ax, 2, 12.0, 4.8)
+    figure, (left, right) = panels_for(ax, 2, 12.0, 4.8)
     laws = list(frame["law"])
     y = np.arange(len(laws))
     sticks = frame["stick_slip"].astype(bool).to_numpy() if "stick_slip" in frame else np.ones(len(laws), bool)
@@ -541,7 +546,7 @@ def law_comparison_figure(frame, *, title: str = "", paper: Optional[dict] = Non
                                       (paper["peak_simulated"], "paper's model", "k", "--"),
                                       (paper["reference_speed"], "$\\omega_{ref}$", "C3", ":")])):
         values = frame[column].to_numpy(dtype=float)
-        ax.barh(y, values, **_style(dict(color=colors), kwargs))
+        ax.barh(y, values, **with_style(dict(color=colors), kwargs))
         for yi, value, stick in zip(y, values, sticks):
             ax.annotate(f"{value:.3g}" + ("" if stick else " (no stick-slip)"), (value, yi), xytext=(3, 0),
                         textcoords="offset points", va="center", fontsize=8,
@@ -573,7 +578,7 @@ def broomstick_axes(chart, ax=None, *, title: str = "", **kwargs):
     """Hook load [kN] against bit depth [m], depth increasing downwards, one line per operation and friction factor
     of a :class:`frictionsim.wells.Broomstick` (line style by friction factor, labelled at the deepest point);
     rotating off bottom once (friction does not change it). Style keywords go to every line. Returns the Axes."""
-    ax = _axes(ax, 7.0, 6.0)
+    ax = axes_for(ax, 7.0, 6.0)
     styles = ["-", "--", "-.", ":"]
     for op in chart.operations:
         color, label = _OPERATION_STYLE.get(op, ("k", op))
@@ -581,8 +586,8 @@ def broomstick_axes(chart, ax=None, *, title: str = "", **kwargs):
         for k, mu in enumerate(factors):
             depth, load = chart.hook_loads(op, mu)
             text = label if op == "rotating_off_bottom" else f"{label}, mu = {mu:g}"
-            ax.plot(load / 1e3, depth, **_style(dict(color=color, linestyle=styles[k % len(styles)], linewidth=1.3,
-                                                     label=text), kwargs))
+            ax.plot(load / 1e3, depth, **with_style(dict(color=color, linestyle=styles[k % len(styles)], linewidth=1.3,
+                                                         label=text), kwargs))
             if op != "rotating_off_bottom":
                 ax.annotate(f"{mu:g}", (load[-1] / 1e3, depth[-1]), xytext=(0, -9), textcoords="offset points",
                             ha="center", fontsize=7, color=color)
@@ -605,9 +610,10 @@ def placement_axes(placement, ax=None, *, title: str = "", **kwargs):
     """A :class:`frictionsim.wells.Placement`: the weight on bit [kN] while sliding against the tool's measured
     depth [m], without any tool as a dashed line, the best depth(s) marked. Style keywords go to the scan's line.
     Returns the Axes."""
-    ax = _axes(ax, 7.0, 4.0)
+    ax = axes_for(ax, 7.0, 4.0)
     label = "one tool at this depth" if len(placement.depths) == 1 else "second tool (first at its best)"
-    ax.plot(placement.scan_depths, np.asarray(placement.scan_weight_on_bit) / 1e3, **_style(dict(label=label), kwargs))
+    ax.plot(placement.scan_depths, np.asarray(placement.scan_weight_on_bit) / 1e3,
+            **with_style(dict(label=label), kwargs))
     ax.axhline(placement.weight_on_bit_without / 1e3, color="grey", linestyle="--", label="no tool")
     for d in placement.depths:
         ax.axvline(d, color="tab:red", linestyle=":")
@@ -627,20 +633,20 @@ def well_path_axes(survey, ax=None, *, view: str = "section", title: str = "", *
     horizontal departure [m], ``"plan"`` north against east [m]. Style keywords go to the path. Returns the Axes."""
     if view not in ("section", "plan"):
         raise InvalidParameterError(f"well_path_axes: view must be 'section' or 'plan' (got {view!r})", "view")
-    ax = _axes(ax, 6.0, 6.0)
+    ax = axes_for(ax, 6.0, 6.0)
     md = np.asarray(survey.measured_depth)
     fine = np.unique(np.concatenate([np.linspace(md[0], md[-1], 400), md]))
     path = survey.interpolate(fine)
     if view == "section":
         departure = np.hypot(path["north"], path["east"])
-        ax.plot(departure, path["tvd"], **_style(dict(color="C0", linewidth=1.5), kwargs))
+        ax.plot(departure, path["tvd"], **with_style(dict(color="C0", linewidth=1.5), kwargs))
         ax.plot(np.hypot(survey.north, survey.east), survey.tvd, "o", color="C0", markersize=1.5, label="stations")
         ax.set_xlabel("horizontal departure [m]")
         ax.set_ylabel("true vertical depth [m]")
         if not ax.yaxis_inverted():
             ax.invert_yaxis()
     else:
-        ax.plot(path["east"], path["north"], **_style(dict(color="C0", linewidth=1.5), kwargs))
+        ax.plot(path["east"], path["north"], **with_style(dict(color="C0", linewidth=1.5), kwargs))
         ax.plot(survey.east, survey.north, "o", color="C0", markersize=1.5, label="stations")
         ax.set_xlabel("east [m]")
         ax.set_ylabel("north [m]")
@@ -655,11 +661,82 @@ def well_path_axes(survey, ax=None, *, view: str = "section", title: str = "", *
 def well_path_figure(survey, *, title: str = "", ax=None, **kwargs):
     """Vertical section and plan view of a survey side by side (``ax``: two Axes); returns the figure (for
     :func:`save`)."""
-    figure, (left, right) = _panels(ax, 2, 11.0, 5.5)
+    figure, (left, right) = panels_for(ax, 2, 11.0, 5.5)
     well_path_axes(survey, left, view="section", **kwargs)
     well_path_axes(survey, right, view="plan", **kwargs)
     if title:
         figure.suptitle(title, fontsize=10)
+    return figure
+
+
+def oscillator_broomstick_figure(frame, zone, *, title: str = ""):
+    """Left: hook load against bit depth while sliding, with and without the tools, and the pick-up load for
+    reference, per friction factor (``frame``: :func:`frictionsim.wells.oscillator_broomstick`); right: the friction
+    reduction along the string at the full depth (``zone``: :func:`frictionsim.wells.zone_of_influence`). Returns
+    the Figure."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(12.0, 6.0), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    styles = ["-", "--", "-.", ":"]
+    for k, (mu, part) in enumerate(frame[frame["operation"] == "trip_out"].groupby("friction_factor")):
+        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="tab:red", linestyle=styles[k % 4],
+                  linewidth=0.9, label=f"pick-up (trip_out), mu = {mu:g}")
+    for k, (mu, part) in enumerate(frame[frame["operation"] == "sliding_drilling"].groupby("friction_factor")):
+        left.plot(part["hook_load_plain"] / 1e3, part["bit_depth"], color="grey", linestyle=styles[k % 4],
+                  linewidth=0.9, label=f"sliding, mu = {mu:g}, no tool")
+        left.plot(part["hook_load_tool"] / 1e3, part["bit_depth"], color="tab:green", linestyle=styles[k % 4],
+                  linewidth=1.3, label=f"sliding, mu = {mu:g}, with the tools")
+    left.invert_yaxis()
+    left.set_xlabel("hook load [kN]")
+    left.set_ylabel("bit depth, measured [m]")
+    left.legend(fontsize=7)
+    left.set_title("broomstick with hydraulic oscillators (each at its height above the bit)", fontsize=9)
+    for k, (mu, part) in enumerate(zone.groupby("friction_factor")):
+        middle = 0.5 * (part["top_depth"] + part["bottom_depth"])
+        right.plot(100.0 * part["reduction"], middle, linestyle=styles[k % 4], label=f"mu = {mu:g}")
+    right.invert_yaxis()
+    right.set_xlabel("friction reduction [%]")
+    right.set_ylabel("measured depth [m]")
+    right.legend(fontsize=7)
+    right.set_title("zone of influence at the full depth", fontsize=9)
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(str(title), fontsize=10)
+    return figure
+
+
+def placements_figure(placements, *, title: str = ""):
+    """The weight on bit against the tool's depth, one panel per friction factor (``placements``: friction factor ->
+    :class:`frictionsim.wells.Placement`, as :func:`frictionsim.wells.sliding_placements` gives). Returns the
+    Figure."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(7.0, 4.0 * len(placements)), layout="constrained")
+    axes = figure.subplots(len(placements), 1, squeeze=False)[:, 0]
+    for ax, (mu, placement) in zip(axes, placements.items()):
+        placement_axes(placement, ax=ax, title=f"{title}, mu = {mu:g}")
+    return figure
+
+
+def identification_figure(result, relative_velocity, *, title: str = ""):
+    """A fit of a friction law to a record (:class:`frictionsim.fit.IdentificationResult`): measured and fitted
+    force over time (left) and against ``relative_velocity`` [m/s] at the fit's samples, the hysteresis loops
+    (right). Returns the Figure."""
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(11.0, 4.5), layout="constrained")
+    left, right = figure.subplots(1, 2)
+    result.plot(ax=left, color="tab:red", linewidth=1.2)
+    right.plot(relative_velocity, result.measured, ".", markersize=2, color="grey", label="measured")
+    right.plot(relative_velocity, result.model, color="tab:red", linewidth=1.0, label=f"{result.law_name} fit")
+    right.set_xlabel("relative velocity [m/s]")
+    right.set_ylabel("friction force [N]")
+    right.legend(fontsize=8)
+    for ax in (left, right):
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(f"{title}: {result.law_name}, rms residual {result.rms_residual:.4g} N, "
+                    f"R^2 = {result.r_squared:.5f}", fontsize=10)
     return figure
 
 
@@ -680,14 +757,14 @@ def sweep_axes(sweep_result, key: Optional[str] = None, ax=None, *, x: Optional[
     if key not in values:
         raise InvalidParameterError(f"key must be one of {', '.join(names)} (got {key!r})", "key")
     column = values[key]
-    ax = _axes(ax, 7.0, 4.5)
+    ax = axes_for(ax, 7.0, 4.5)
     shape, parameters = sweep_result.grid_shape, sweep_result.parameters
     label = key if key != "value" else "value"
     if shape is not None and len(shape) == 2 and x is None:
         axes = sweep_result.axes
         first, second = (np.asarray(axes[name], dtype=float) for name in parameters)
         mesh = ax.pcolormesh(_edges(first), _edges(second), column.reshape(shape).T,
-                             **_style(dict(shading="flat"), kwargs))
+                             **with_style(dict(shading="flat"), kwargs))
         if colorbar:
             ax.figure.colorbar(mesh, ax=ax, label=label)
         ax.set_xlabel(parameters[0])
@@ -701,7 +778,7 @@ def sweep_axes(sweep_result, key: Optional[str] = None, ax=None, *, x: Optional[
             raise InvalidParameterError(f"x must be one of {', '.join(parameters)} (got {x!r})", "x")
         along = np.array([point.get(x, np.nan) for point in sweep_result.points], dtype=float)
         order = np.argsort(along, kind="stable")
-        ax.plot(along[order], column[order], **_style(dict(marker="o", linewidth=1.2, label=label), kwargs))
+        ax.plot(along[order], column[order], **with_style(dict(marker="o", linewidth=1.2, label=label), kwargs))
         ax.set_xlabel(x)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)

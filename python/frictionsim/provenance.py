@@ -328,7 +328,7 @@ def _platform() -> tuple:
 
 @functools.lru_cache(maxsize=None)
 def _package() -> tuple:
-    from . import __version__
+    from ._core import __version__
 
     items = [("version", __version__)]
     revision = git_revision(Path(__file__).resolve().parent)

@@ -10,7 +10,8 @@ from typing import Any, Dict, Iterator, List, Optional
 
 import numpy as np
 
-from . import _core
+from ._core import EventLog, mean_from_integral, RawResult, whole_cycle_window
+from .outputs import output_units
 
 __all__ = ["Event", "Result"]
 
@@ -83,12 +84,14 @@ class Result:
     t_reached : float, s
     period : float or None, s
         The rig's vibration period, the default of :meth:`mean_over_cycles`.
+    units : dict
+        Column -> SI unit, as the rig and its law declare them (:func:`frictionsim.outputs.output_units`).
     metadata : dict
         Provenance of the run (:func:`frictionsim.provenance.collect`): version, rig and law ``repr``, solver
         options and stats, time, platform; the ``attrs`` of :meth:`to_netcdf`.
     """
 
-    def __init__(self, raw: "_core.RawResult", period: Optional[float] = None) -> None:
+    def __init__(self, raw: "RawResult", period: Optional[float] = None) -> None:
         self.t: np.ndarray = raw.t
         self.states: np.ndarray = raw.states
         self.state_names: List[str] = list(raw.state_names)
@@ -97,9 +100,9 @@ class Result:
         # The event log is moved out of the engine's result (its columns are copies already and go with it) and
         # turned into tuples and Event objects on first access: a run with hundreds of switches would otherwise
         # spend 2 % of a millisecond-long simulation making them (bench/compare.py measured it)
-        self._event_log: Optional["_core.EventLog"] = raw.take_event_log()
+        self._event_log: Optional["EventLog"] = raw.take_event_log()
         self._events: Optional[List[Event]] = None
-        self._stop_log: Optional["_core.EventLog"] = raw.take_stop_events()
+        self._stop_log: Optional["EventLog"] = raw.take_stop_events()
         self._stop_events: Optional[List[Event]] = None
         self.stats: Dict[str, int] = dict(raw.stats)
         self.completed: bool = bool(raw.completed)
@@ -115,6 +118,7 @@ class Result:
         # the record made later is the run's.
         self._run: Optional[tuple] = None
         self._metadata: Optional[Dict[str, Any]] = None
+        self._units: Optional[Dict[str, str]] = None
         for array in (self.t, self.states, self.friction_force, self.mode):
             array.setflags(write=False)  # shared views: a caller's edit must not corrupt the result
 
@@ -139,12 +143,14 @@ class Result:
         state["_stop_events"] = self.stop_events
         state["_stop_log"] = None
         state["_metadata"] = self.metadata  # the rig need not pickle (a CallableLaw's function): its record does
+        state["_units"] = self.units
         state["_run"] = None
         return state
 
     def __setstate__(self, state: dict) -> None:
         state.setdefault("_run", None)  # a Result pickled before provenance existed
         state.setdefault("_metadata", None)
+        state.setdefault("_units", {})
         self.__dict__.update(state)
 
     # ------------------------------------------------------------------ provenance and labelled outputs
@@ -169,6 +175,16 @@ class Result:
     @metadata.setter
     def metadata(self, record: Dict[str, Any]) -> None:
         self._metadata = dict(record)
+
+    @property
+    def units(self) -> Dict[str, str]:
+        """Column (``t``, a state, ``friction_force``) -> its SI unit, as the run's rig and its law declare them
+        (:func:`frictionsim.outputs.output_units`); {} for a Result made without a rig."""
+        if self._units is None:
+            if self._run is None:
+                return {}
+            self._units = output_units(self._run[0])
+        return self._units
 
     def to_xarray(self):
         """The result as a labelled xarray Dataset (:func:`frictionsim.io.result_dataset`).
@@ -349,9 +365,9 @@ class Result:
         if cycles is not None and (isinstance(cycles, bool) or not isinstance(cycles, (int, np.integer))
                                    or cycles < 1):
             raise ValueError(f"cycles must be None or an integer >= 1 (got {cycles!r})")
-        t_a, t_b, _ = _core.whole_cycle_window(float(self.t[0]), float(self.t[-1]), float(period),
+        t_a, t_b, _ = whole_cycle_window(float(self.t[0]), float(self.t[-1]), float(period),
                                                float(transient), int(cycles or 0))
-        return _core.mean_from_integral(self.t, self["friction_impulse"], t_a, t_b)
+        return mean_from_integral(self.t, self["friction_impulse"], t_a, t_b)
 
     def to_pandas(self):
         """A pandas DataFrame indexed by t [s]: one column per state, friction_force [N] and mode."""

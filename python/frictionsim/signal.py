@@ -28,6 +28,7 @@ import scipy.signal
 
 from . import _core
 from .errors import InvalidParameterError
+from .validation import require_finite
 
 __all__ = [
     "Decomposition",
@@ -45,8 +46,6 @@ def _reject(owner: str, parameter: str, rule: str, value: object) -> None:
 
 def _finite(owner: str, x: np.ndarray, **results) -> None:
     """NaN or inf never leaves: x was finite, so its magnitudes overflowed (the fits' rule, named x)."""
-    from .fit.quality import require_finite  # deferred: the fit package imports this module
-
     require_finite(owner, results, {"x": x})
 
 

@@ -175,7 +175,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
 
 
 def _is_time_stepping(rig) -> bool:
-    return type(rig).__name__ == "TorsionalString"
+    field = getattr(_core, "TorsionalString", None)  # bound only with Eigen (HAS_EIGEN)
+    return field is not None and isinstance(rig, field)
 
 
 def _stop_conditions(events) -> List["_core.StopCondition"]:

@@ -26,15 +26,16 @@ from typing import Any, Dict, Optional, Sequence
 import numpy as np
 
 from . import _core
+from .data import PAPER001_FIG7
 from .errors import InvalidParameterError
-from .simulation import SOLVER_DEFAULTS
+from ._core import Coulomb, Dahl, LuGre, Stribeck, TorsionalRig
+from .simulation import SOLVER_DEFAULTS, simulate
 
 __all__ = ["FIG7", "LimitCycle", "StickSlipMap", "compare_laws", "fig7_friction", "fig7_laws", "limit_cycle",
            "severity_index", "simulate_fig7", "stick_slip_map", "stick_slip_point"]
 
 #: Paper 001, Fig. 7 (measured / simulated): stick-slip frequency [Hz] and peak disc speed [rad/s].
-FIG7 = {"reference_speed": 5.76, "normal_force": 35.0, "frequency_measured": 0.83, "frequency_simulated": 0.84,
-        "peak_measured": 13.55, "peak_simulated": 14.0}
+FIG7 = PAPER001_FIG7
 
 def fig7_friction(branch_gap: str = "hold") -> "_core.HystereticFriction":
     """The eq 6 friction law chosen to reproduce paper 001's Fig. 7 (C++ ``paper001_fig7_friction``):
@@ -60,8 +61,6 @@ def fig7_laws() -> Dict[str, Any]:
     Coulomb cannot sustain stick-slip below mu_static ~ 0.49 (the shaft damping wins), so it gets 0.5; Dahl has
     no static peak and gives none at all: both are reported as what they are.
     """
-    from . import Coulomb, Dahl, LuGre, Stribeck
-
     return {
         "hysteretic (eq 6)": fig7_friction(),
         "Coulomb": Coulomb(mu=0.2714, mu_static=0.5),
@@ -147,8 +146,6 @@ def simulate_fig7(friction=None, t_end: float = 40.0, *, sample_time: float = 1e
                   rtol: float = SOLVER_DEFAULTS.rtol, **rig_params: Any):
     """Simulate the rig (defaults: Fig. 7's operating point and :func:`fig7_friction`) from rest to ``t_end``
     [s], sampled every ``sample_time`` [s]; returns ``(rig, result)``."""
-    from . import TorsionalRig, simulate
-
     rig = TorsionalRig(fig7_friction() if friction is None else friction, **rig_params)
     if not (np.isfinite(t_end) and t_end > 0):
         raise InvalidParameterError(f"simulate_fig7: t_end must be positive and finite (got {t_end!r})", "t_end")

@@ -44,10 +44,12 @@ import numpy as np
 from .errors import InvalidParameterError
 
 __all__ = ["DRILLING_UNITS", "MAX_TEXT_LENGTH", "TABLE_UNITS", "UnitError", "UnitsUnavailableError", "convert",
-           "describe", "install", "quantity", "registry", "to_si", "units_of"]
+           "describe", "install", "quantity", "registry", "table_unit", "to_si", "units_of"]
 
-#: Every unit string of the engine's parameter tables (C++ ``Field::unit``, include/frictionsim) and of the few
-#: arguments no table describes (``deg``, ``rad/m``): (its pint expression, what it measures, the dimension's name).
+#: Words for the unit strings of the engine's parameter tables (C++ ``Field::unit``, include/frictionsim) and of the
+#: few arguments no table describes (``deg``, ``rad/m``): (its pint expression, what it measures, the dimension's
+#: name), for the messages. A table's unit string needs no entry: :func:`table_unit` reads it as written (units
+#: separated by spaces multiply, ``^`` is a power), and a message then names its dimension as pint states it.
 TABLE_UNITS: Dict[str, Tuple[str, str, str]] = {
     "-": ("dimensionless", "a dimensionless number", "dimensionless"),
     "Hz": ("Hz", "a frequency", "frequency"),
@@ -163,9 +165,17 @@ def registry():
 @functools.lru_cache(maxsize=None)
 def _target(unit: str):
     """The pint unit of a table's unit string."""
+    return registry().Unit(table_unit(unit))
+
+
+def table_unit(unit: str) -> str:
+    """The pint expression of a table's unit string ("N m s/rad" -> "N*m*s/rad", "kg m^2" -> "kg*m**2",
+    "-" -> "dimensionless"): read off the string itself, so a law's new unit needs no entry here."""
     if unit in TABLE_UNITS:
-        return registry().Unit(TABLE_UNITS[unit][0])
-    return registry().Unit(unit)
+        return TABLE_UNITS[unit][0]
+    if unit.strip() in ("-", "1", ""):
+        return "dimensionless"
+    return re.sub(r"(?<=[\w)])\s+(?=[A-Za-z(])", "*", unit.strip()).replace("^", "**")
 
 
 def describe(unit: str) -> str:

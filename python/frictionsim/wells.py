@@ -20,6 +20,7 @@ draws them. SI units: metres, newtons, radians inside; survey files give their u
 from __future__ import annotations
 
 import csv
+import logging
 import math
 import re
 from dataclasses import dataclass
@@ -41,6 +42,7 @@ __all__ = [
     "OscillatorDragResult",
     "OscillatorResponse",
     "Placement",
+    "PlannedOscillator",
     "OPERATIONS",
     "PipeSection",
     "SoftString",
@@ -49,6 +51,9 @@ __all__ = [
     "broomstick",
     "frequency_scan",
     "node_table",
+    "operations_table",
+    "oscillator_broomstick",
+    "oscillators_at",
     "place_oscillators",
     "plot_placement",
     "plot_broomstick",
@@ -57,9 +62,14 @@ __all__ = [
     "soft_string",
     "string_to_depth",
     "survey_from",
+    "sliding_placements",
     "torque_drag",
     "trajectory",
+    "wall_friction",
+    "zone_of_influence",
 ]
+
+_log = logging.getLogger(__name__)
 
 #: The operations of :meth:`SoftString.run` (trip_in, trip_out, reaming, backreaming, rotating_off_bottom,
 #: sliding_drilling, rotary_drilling).
@@ -522,3 +532,150 @@ def plot_placement(placement: Placement, ax=None, *, title: str = ""):
     from .plots import placement_axes
 
     return placement_axes(placement, ax=ax, title=title)
+
+
+# ------------------------------------------------------------------------ a torque-and-drag study (the CLI's)
+@dataclass(frozen=True)
+class PlannedOscillator:
+    """An axial vibration tool of a study: its depth (``depth`` m MD at the full bit depth, or ``above_bit`` metres
+    above the bit), force amplitude [N] and frequency [Hz]. It keeps its height above the bit while the string is
+    run in."""
+
+    depth: Optional[float]
+    above_bit: Optional[float]
+    force: float
+    frequency: float
+
+    def height(self, bit_depth: float) -> float:
+        """Metres above the bit when the bit is at ``bit_depth`` (the full string)."""
+        return self.above_bit if self.above_bit is not None else bit_depth - self.depth
+
+
+def oscillators_at(tools: Sequence[PlannedOscillator], full_depth: float, bit_depth: float) -> List[Any]:
+    """The HydraulicOscillators with the bit at ``bit_depth``: each keeps its height above the bit; those that
+    would be above the surface are left out (the string is not that long yet)."""
+    return [HydraulicOscillator(measured_depth=bit_depth - tool.height(full_depth), force_amplitude=tool.force,
+                                frequency=tool.frequency)
+            for tool in tools if bit_depth - tool.height(full_depth) >= 0.0]
+
+
+def wall_friction(friction_factor: float, cased_friction: Optional[float] = None) -> Dict[str, float]:
+    """The SoftString keywords of one friction factor: open hole ``friction_factor``, cased hole
+    ``cased_friction`` (default the same)."""
+    return dict(open_hole_friction=friction_factor,
+                cased_hole_friction=friction_factor if cased_friction is None else cased_friction)
+
+
+def operations_table(model: SoftString, friction_factors: Sequence[float], operations: Sequence[str],
+                     conditions: Dict[str, Any], cased_friction: Optional[float] = None):
+    """Every operation at every friction factor: ``(nodes, summary)``, DataFrames of :func:`node_table` per run
+    (with operation, friction_factor and node in front) and one row per run (hook load [kN], surface torque
+    [kN m], buckled nodes)."""
+    import pandas as pd
+
+    tables, summary = [], []
+    for mu in friction_factors:
+        friction = wall_friction(mu, cased_friction)
+        for op in operations:
+            result = model.run(op, **conditions, **friction)
+            table = node_table(result)
+            table.insert(0, "node", range(len(table)))
+            table.insert(0, "friction_factor", mu)
+            table.insert(0, "operation", op)
+            tables.append(table)
+            summary.append({"operation": op, "friction_factor": mu, "hook_load_kN": result.hook_load / 1e3,
+                            "surface_torque_kNm": result.surface_torque / 1e3,
+                            "sinusoidally_buckled_nodes": int(result.sinusoidally_buckled.sum()),
+                            "helically_buckled_nodes": int(result.helically_buckled.sum())})
+    return pd.concat(tables, ignore_index=True), pd.DataFrame(summary)
+
+
+def oscillator_broomstick(survey: Survey, string: DrillString, chart: Broomstick,
+                          tools: Sequence[PlannedOscillator], full_depth: float, friction_factors: Sequence[float], *,
+                          conditions: Dict[str, Any], estimate: Dict[str, Any], element_length: float = ELEMENT_LENGTH,
+                          cased_friction: Optional[float] = None):
+    """Hook load and surface torque against bit depth with and without the tools, at the broomstick's depths and
+    operations (plus sliding, where a tool matters most, and rotary drilling with weight on bit): a DataFrame."""
+    import pandas as pd
+
+    weight_on_bit = float(conditions.get("weight_on_bit", 0.0))
+    operations = list(dict.fromkeys(list(chart.operations) + ["sliding_drilling"]
+                                    + (["rotary_drilling"] if weight_on_bit > 0.0 else [])))
+    rows = []
+    for bit_depth in sorted(set(chart.frame["bit_depth"])):
+        placed = oscillators_at(tools, full_depth, bit_depth)
+        model = soft_string(survey, string_to_depth(string, bit_depth), element_length=element_length)
+        for mu in friction_factors:
+            for op in operations:
+                r = model.oscillators(op, placed, **conditions, **wall_friction(mu, cased_friction), **estimate)
+                rows.append({"bit_depth": bit_depth, "friction_factor": mu, "operation": op, "tools": len(placed),
+                             "hook_load_plain": r.plain.hook_load, "hook_load_tool": r.vibrated.hook_load,
+                             "surface_torque_plain": r.plain.surface_torque,
+                             "surface_torque_tool": r.vibrated.surface_torque,
+                             "zone_length": r.zone_length})
+    return pd.DataFrame(rows)
+
+
+def zone_of_influence(model: SoftString, tools: Sequence[PlannedOscillator], depth: float, operation: str,
+                      friction_factors: Sequence[float], *, conditions: Dict[str, Any], estimate: Dict[str, Any],
+                      cased_friction: Optional[float] = None):
+    """Per element at the full depth, for ``operation`` and each friction factor: the tools' vibration amplitude,
+    the friction factors and reduction, in the zone or not; and one summary row per friction factor:
+    ``(elements, summary)`` DataFrames."""
+    import pandas as pd
+
+    placed = oscillators_at(tools, depth, depth)
+    nodes = np.asarray(model.node_depths)
+    top, bottom = nodes[:-1], nodes[1:]
+    frames, summary = [], []
+    for mu in friction_factors:
+        r = model.oscillators(operation, placed, **conditions, **wall_friction(mu, cased_friction), **estimate)
+        reduction = np.asarray(r.reduction)
+        in_zone = (top >= r.zone_top - 1e-9) & (bottom <= r.zone_bottom + 1e-9) & (r.zone_length > 0.0)
+        frames.append(pd.DataFrame({"friction_factor": mu, "element": np.arange(len(reduction)),
+                                    "top_depth": top, "bottom_depth": bottom,
+                                    "vibration_amplitude": r.vibration_amplitude, "axial_factor": r.axial_factor,
+                                    "circumferential_factor": r.circumferential_factor, "reduction": reduction,
+                                    "in_zone": in_zone & (reduction > 0.0)}))
+        summary.append({"friction_factor": mu, "zone_top_m": r.zone_top, "zone_bottom_m": r.zone_bottom,
+                        "zone_length_m": r.zone_length, "hook_load_kN": r.plain.hook_load / 1e3,
+                        "hook_load_tool_kN": r.vibrated.hook_load / 1e3,
+                        "hook_load_change_kN": r.hook_load_change / 1e3,
+                        "surface_torque_change_kNm": r.surface_torque_change / 1e3,
+                        "weight_on_bit_kN": float(conditions.get("weight_on_bit", 0.0)) / 1e3,
+                        "converged": bool(r.converged)})
+    return pd.concat(frames, ignore_index=True), pd.DataFrame(summary)
+
+
+def sliding_placements(model: SoftString, tools: Sequence[PlannedOscillator], friction_factors: Sequence[float], *,
+                       conditions: Dict[str, Any], estimate: Dict[str, Any],
+                       cased_friction: Optional[float] = None) -> Dict[float, Placement]:
+    """friction factor -> :class:`Placement` of one tool (the first of ``tools``' force and frequency, else 50 kN
+    at 18 Hz) while sliding at the hook load that puts ``conditions["weight_on_bit"]`` on the bit without it."""
+    force, frequency = (tools[0].force, tools[0].frequency) if tools else (50e3, 18.0)
+    weight_on_bit = float(conditions.get("weight_on_bit", 0.0))
+    out = {}
+    for mu in friction_factors:
+        friction = wall_friction(mu, cased_friction)
+        hook_load = model.run("sliding_drilling", **{**conditions, **friction}).hook_load
+        if hook_load < 0.0:
+            _log.warning("mu = %g: sliding %g kN onto the bit needs a hook load of %.4g kN: the string would have "
+                         "to be pushed from the surface", mu, weight_on_bit / 1e3, hook_load / 1e3)
+        rest = {k: v for k, v in conditions.items() if k != "weight_on_bit"}
+        out[mu] = place_oscillators(_Estimated(model, estimate), hook_load, force_amplitude=force,
+                                    frequency=frequency, **rest, **friction)
+    return out
+
+
+class _Estimated:
+    """A SoftString whose placement objective takes the estimate's settings: place_oscillators' first parameter is
+    called ``model``, so its ``**keywords`` cannot carry the estimate's ``model`` keyword."""
+
+    def __init__(self, soft_string: SoftString, estimate: Dict[str, Any]) -> None:
+        self._soft_string, self._estimate = soft_string, estimate
+
+    def __getattr__(self, name: str):
+        return getattr(self._soft_string, name)
+
+    def sliding_weight_on_bit(self, hook_load, tools, **keywords):
+        return self._soft_string.sliding_weight_on_bit(hook_load, tools, **keywords, **self._estimate)

@@ -222,6 +222,32 @@ def test_units_follow_the_rig():
         "rad", "rad/s", "m", "m/s", "J"]
 
 
+def test_every_rig_and_law_declares_the_units_of_its_outputs():
+    """No unit is looked up by a class or state name: each rig of _core.RIGS has its declaration (outputs.RIG_OUTPUTS,
+    keyed by the class), each law its states' units beside their names (from C++), and a run's every state gets
+    one: a law's (LuGre's bristle deflection on the axial rig; numbered per node on a string) as well as the rig's."""
+    from frictionsim import drillstring, outputs
+
+    assert set(fs._core.RIGS) <= set(outputs.RIG_OUTPUTS)
+    for law in fs.FRICTION_LAWS:
+        assert len(law.state_units) == len(law.state_names) == len(outputs.law_state_units(law)), law
+        assert all(unit for unit in law.state_units), law
+    assert fs.LuGre.state_units == ("m",) and fs.Coulomb.state_units == ()
+    assert not hasattr(io, "STATE_UNITS")  # a new law needs no entry in io.py
+    axial = fs.simulate(fs.AxialVibrationRig(friction=fs.LuGre(0.3, 0.4, 1e-3, 1e5, 300.0)), 0.05)
+    assert set(axial.units) == {"t", "friction_force", "friction_impulse", *axial.state_names}
+    assert axial.units["bristle_deflection"] == "m" and axial.units["drive_work"] == "J"
+    string = fs.StringRig(drillstring.field_string(), fs.Dahl(0.2, 1e5), elements=2, inclination=1.0)
+    run = fs.simulate(string, 0.05)
+    assert set(run.state_names) <= set(run.units) and run.units["dahl_deflection_2"] == "m"
+    assert run.units["friction_force"] == "N m" and run.units["mode"] == "1"
+    assert io.state_units("omega_1", run) == "rad/s" and io.state_units("omega_1", string) == "rad/s"
+    assert io.state_units("t") == "s" and io.state_units("omega_1") is None
+    import pickle
+
+    assert pickle.loads(pickle.dumps(run)).units == run.units  # kept without the rig
+
+
 def point(amplitude, frequency, fail_at=None):
     """A sweep point with a closed form: the velocity amplitude 2 pi f u0 [m/s] and its square."""
     if fail_at is not None and (amplitude, frequency) == fail_at:

@@ -28,6 +28,7 @@ located as an event.)doc";
     static constexpr bool kink_at_zero_velocity = true;
     static constexpr std::size_t state_count = 1;
     static constexpr std::array<const char*, 1> state_names{"dahl_deflection"};  ///< z, m
+    static constexpr std::array<const char*, 1> state_units{"m"};  ///< SI, the Results' and files' units
 
     /// Range of alpha. Below 1 the saturation b = 0 is reached at a finite sliding distance with an unbounded
     /// slope d(dz/dt)/dz ~ |b|^(alpha - 1), which step-size control resolves ever more slowly (measured on the

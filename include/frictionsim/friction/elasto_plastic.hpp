@@ -49,6 +49,7 @@ dynamics): simulate() picks CVODE BDF for it.)doc";
     static constexpr bool stiff = true;  ///< bristle modes as LuGre's
     static constexpr std::size_t state_count = 1;
     static constexpr std::array<const char*, 1> state_names{"bristle_deflection"};  ///< z, m
+    static constexpr std::array<const char*, 1> state_units{"m"};  ///< SI, the Results' and files' units
 
     /// LuGre's parameters (and defaults), and where the plastic ramp starts.
     struct Params : LuGre::Params {

@@ -77,6 +77,7 @@ s/C (frictional lag). The kink at v_r = 0 is located as an event. States: block_
     static constexpr std::size_t state_count = block_count;
     static constexpr std::array<const char*, block_count> state_names{
         "block_deflection_1", "block_deflection_2", "block_deflection_3", "block_deflection_4"};  ///< z_i, m
+    static constexpr std::array<const char*, block_count> state_units{"m", "m", "m", "m"};  ///< SI
 
     struct Params {
         double coulomb_coefficient = 0.3;  ///< mu: s(v) -> mu F_N at high speed

@@ -45,6 +45,7 @@ Stiff (bristle dynamics): simulate() picks CVODE BDF for it.)doc";
     static constexpr bool stiff = true;  ///< bristle modes ~ sqrt(sigma0/m), z relaxation sigma0 |v| / g(v)
     static constexpr std::size_t state_count = 1;
     static constexpr std::array<const char*, 1> state_names{"bristle_deflection"};  ///< z, m
+    static constexpr std::array<const char*, 1> state_units{"m"};  ///< SI, the Results' and files' units
 
     struct Params {
         double coulomb_coefficient = 1.0;   ///< mu_c: Fc = mu_c N

@@ -1,4 +1,5 @@
-"""Experimental data of paper 000 (axial vibrating-sliding friction between shale and 45 steel).
+"""Experimental data of paper 000 (axial vibrating-sliding friction between shale and 45 steel), and the values
+paper 001 reports at its Fig. 7 operating point (:data:`PAPER001_FIG7`).
 
 Tables 3, 4 and 5 and the sliding friction coefficients of section 2.4.1, transcribed exactly as printed into
 CSV files next to this module (each file's header comments quote the printed column headers). The functions
@@ -7,7 +8,7 @@ return pandas DataFrames holding the printed columns, named with their printed u
 named ``"dry"``, ``"water"``, ``"wbm"``, ``"obm"``, ``"sbm"`` in column ``lubricant`` (the spelling of the C++
 ``lubricant_name``); ``lubricant_printed`` keeps the printed spelling.
 
-Pure Python: nothing here needs the compiled extension.
+Pure Python: nothing here needs the compiled extension (pandas loads when a table is read).
 """
 
 from __future__ import annotations
@@ -15,17 +16,26 @@ from __future__ import annotations
 import io
 import math
 from importlib import resources
+from typing import TYPE_CHECKING
 
-import pandas as pd
+if TYPE_CHECKING:
+    import pandas as pd
 
-__all__ = ["LUBRICANTS", "sliding_friction_coefficients", "table3", "table4", "table5"]
+__all__ = ["LUBRICANTS", "PAPER001_FIG7", "sliding_friction_coefficients", "table3", "table4", "table5"]
 
 #: The five lubricating conditions, in the order of Tables 3 and 5 (and of the C++ ``Lubricant`` enum).
 LUBRICANTS = ("dry", "water", "wbm", "obm", "sbm")
 
+#: Paper 001, Fig. 7 (measured / simulated): stick-slip frequency [Hz] and peak disc speed [rad/s] at the operating
+#: point w_ref = 5.76 rad/s, N2 = 35 N (:data:`frictionsim.torsional.FIG7`; the plots' reference lines).
+PAPER001_FIG7 = {"reference_speed": 5.76, "normal_force": 35.0, "frequency_measured": 0.83,
+                 "frequency_simulated": 0.84, "peak_measured": 13.55, "peak_simulated": 14.0}
+
 
 def _read(name: str) -> pd.DataFrame:
     # importlib.resources so the CSVs are found inside an installed wheel (or zip), not only in a source tree.
+    import pandas as pd
+
     text = resources.files(__name__).joinpath(name).read_text(encoding="utf-8")
     frame = pd.read_csv(io.StringIO(text), comment="#")
     frame.insert(frame.columns.get_loc("lubricant_printed"), "lubricant", frame["lubricant_printed"].str.lower())

@@ -25,9 +25,17 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .. import _core
+from .._core import PowerLawCoefficient, whole_cycle_window
 from ..errors import InvalidParameterError
 from .text import article, join
+
+#: SI units of the rig kinds' derived time-series columns (:meth:`frictionsim.scenario.rigs.RigKind.columns`); the
+#: states' units are the rig's and its law's own (:attr:`frictionsim.Result.units`).
+KIND_COLUMN_UNITS: Dict[str, str] = {
+    "surface_position": "m", "surface_velocity": "m/s", "relative_displacement": "m", "relative_velocity": "m/s",
+    "drive_force": "N", "disc_acceleration": "rad/s^2", "friction_torque": "N m", "shaft_torque": "N m",
+    "voltage": "V", "surface_torque": "N m", "bit_torque": "N m", "wall_friction_torque": "N m",
+}
 
 __all__ = ["Analysis", "CYCLE_MEAN", "CaseRun", "CycleMean", "LIMIT_CYCLE", "LimitCycle", "LimitCycleRun",
            "STICK_SLIP", "StickSlipAnalysis", "StringRun"]
@@ -49,7 +57,7 @@ class _Run:
 
     def timeseries(self):
         """pandas DataFrame: t [s], the rig's states (SI), the columns of its kind
-        (:meth:`frictionsim.scenario.rigs.RigKind.columns`) and mode."""
+        (:meth:`frictionsim.scenario.rigs.RigKind.columns`) and mode; ``attrs["units"]``: each column's unit."""
         import pandas as pd
 
         r = self.result
@@ -57,7 +65,11 @@ class _Run:
         columns.update((name, r[name]) for name in r.state_names)
         columns.update(self.case.kind.columns(self))
         columns["mode"] = r.mode
-        return pd.DataFrame(columns)
+        frame = pd.DataFrame(columns)
+        units = {name: unit for name, unit in KIND_COLUMN_UNITS.items() if name in columns}
+        units.update((name, unit) for name, unit in r.units.items() if name in columns)
+        frame.attrs["units"] = units
+        return frame
 
 
 @dataclass
@@ -79,7 +91,7 @@ class CaseRun(_Run):
         ratio = self.velocity_ratio
         table5 = math.nan
         if self.case.lubricant and math.isfinite(ratio):
-            table5 = float(_core.PowerLawCoefficient.from_table5(self.case.lubricant).coefficient(ratio, 1.0)) * normal
+            table5 = float(PowerLawCoefficient.from_table5(self.case.lubricant).coefficient(ratio, 1.0)) * normal
         return {
             "case": self.case.name, "law": self.case.friction.label, "rig": self.case.rig.type,
             "F_N_N": normal, "mu": mu, "mu_F_N_N": mu * normal, "F_df_N": self.mean_friction,
@@ -259,7 +271,7 @@ class CycleMean(Analysis):
         transient = a.transient
         if transient is None:
             transient = t_end - a.cycles * period if a.cycles else 0.5 * t_end
-        return tuple(_core.whole_cycle_window(0.0, t_end, period, transient, int(a.cycles or 0)))
+        return tuple(whole_cycle_window(0.0, t_end, period, transient, int(a.cycles or 0)))
 
     def output_times(self, case) -> np.ndarray:
         t_a, t_b, _ = case.window()
@@ -462,9 +474,9 @@ class StickSlipAnalysis(Analysis):
         if "stick_slip_map" in wanted:
             for run in runs:
                 if run.map is not None:
-                    figure = ds.stick_slip_map_figure(run.map, title=f"{title}: {run.case.name}",
-                                                      point=(float(run.rig.surface_speed),
-                                                             float(run.rig.weight_on_bit)))
+                    figure = ds.string_stick_slip_map_figure(run.map, title=f"{title}: {run.case.name}",
+                                                             point=(float(run.rig.surface_speed),
+                                                                    float(run.rig.weight_on_bit)))
                     written.append(plots.save(figure, directory / f"stick_slip_map_{run.case.name}.png"))
         return written
 

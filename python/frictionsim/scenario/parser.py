@@ -1,7 +1,7 @@
 """Reading and validating scenario files (TOML, or a mapping as :func:`tomllib.loads` returns) into the specs of
 :mod:`frictionsim.scenario.specs`. What a rig type allows is asked of its kind (:mod:`frictionsim.scenario.rigs`).
 A number may be written as a string with its unit (``reference_speed = "55 rpm"``): it is converted to the key's SI
-unit, read off the engine's parameter table (the schema's own keys: ``_SCHEMA_UNITS``), by
+unit, read off the engine's parameter table (the schema's own keys: ``SCHEMA_UNITS``), by
 :func:`frictionsim.units.to_si`; a unit of the wrong kind is a ScenarioError naming the key and the dimension.
 """
 
@@ -41,8 +41,8 @@ MAX_DATA_FILE_BYTES = 256 * 2**20
 
 #: The SI units of the schema's own keys (the rig and friction keys take theirs from the engine's tables): a value
 #: may be written with a unit, e.g. t_end = "2 min".
-_SCHEMA_UNITS = {"t_end": "s", "timeout": "s", "output_step": "s", "transient": "s", "period": "s",
-                 "stick_speed": "rad/s", "surface_speeds": "rad/s", "weights_on_bit": "N", "plot_window": "s"}
+SCHEMA_UNITS = {"t_end": "s", "timeout": "s", "output_step": "s", "transient": "s", "period": "s",
+                "stick_speed": "rad/s", "surface_speeds": "rad/s", "weights_on_bit": "N", "plot_window": "s"}
 _SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "timeout": float, "output_points": int,
                 "output_step": float}
 _OUTPUT_KEYS = {"directory": str, "tables": list, "plots": list, "plot_window": list}
@@ -375,7 +375,7 @@ class _Parser:
             if key not in _SOLVER_KEYS:
                 raise self.error(key_path, f"unknown key (allowed: {', '.join(_SOLVER_KEYS)})")
             if _SOLVER_KEYS[key] is float:
-                values[key] = self.measure(value, _SCHEMA_UNITS.get(key), key_path)
+                values[key] = self.measure(value, SCHEMA_UNITS.get(key), key_path)
             else:
                 values[key] = self.value(value, _SOLVER_KEYS[key], key_path)
             paths[key] = key_path
@@ -420,12 +420,12 @@ class _Parser:
                 raise self.error(key_path, f"unknown key{kind.analysis.unknown_note(kind)} "
                                            f"(allowed: {', '.join(keys)})")
             if keys[key] is float:
-                values[key] = self.measure(value, _SCHEMA_UNITS.get(key), key_path)
+                values[key] = self.measure(value, SCHEMA_UNITS.get(key), key_path)
             else:
                 values[key] = self.value(value, keys[key], key_path)
             paths[key] = key_path
             if keys[key] is list:  # an analysis's arrays are of numbers (a drill string's map grid)
-                values[key] = self.numbers(value, None, "", key_path, _SCHEMA_UNITS.get(key))
+                values[key] = self.numbers(value, None, "", key_path, SCHEMA_UNITS.get(key))
         if "stick_speed" in values:
             self.positive(values["stick_speed"], paths["stick_speed"])
         if "period" in values:
@@ -473,7 +473,7 @@ class _Parser:
             window = values["plot_window"]
             if len(window) != 2:
                 raise self.error("output.plot_window", f"must be [t_start, t_end] in s (got {window!r})")
-            window = tuple(self.measure(x, _SCHEMA_UNITS["plot_window"], f"output.plot_window[{i + 1}]")
+            window = tuple(self.measure(x, SCHEMA_UNITS["plot_window"], f"output.plot_window[{i + 1}]")
                            for i, x in enumerate(window))
             if not (math.isfinite(window[0]) and math.isfinite(window[1]) and 0 <= window[0] < window[1]):
                 raise self.error("output.plot_window", f"must satisfy 0 <= t_start < t_end (got {list(window)})")

@@ -146,10 +146,9 @@ def _write_timeseries(run, frame, path: Path, format: str) -> None:
         from ..io import state_units, write_netcdf
 
         dataset = run.result.to_xarray()
-        rig_type = type(run.rig).__name__
         for column in frame.columns:  # the rig kind's derived columns (relative velocity, drive force, ...)
             if column not in dataset.variables and column != "t":
-                unit = state_units(column, rig_type)
+                unit = state_units(column, frame)
                 dataset[column] = ("time", frame[column].to_numpy(), {} if unit is None else {"units": unit})
         write_netcdf(dataset, path)
 

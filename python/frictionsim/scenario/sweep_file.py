@@ -48,7 +48,7 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Seque
 import numpy as np
 
 from .. import units
-from .parser import _SCHEMA_UNITS, ScenarioError, loads_toml, parse, read_toml
+from .parser import SCHEMA_UNITS, ScenarioError, loads_toml, parse, read_toml
 from .rigs import RIG_KINDS, friction_types
 from .specs import Scenario
 
@@ -220,7 +220,7 @@ def _unit_of(scenario: Scenario, key: str) -> Optional[str]:
         return RIG_KINDS[case.rig.type].units.get(name)
     if section == "friction":
         return units.units_of(friction_types()[case.friction.type].make).get(name)
-    return _SCHEMA_UNITS.get(name)
+    return SCHEMA_UNITS.get(name)
 
 
 def _typed(value: Any, kind: type, key: str, error: Callable[..., ScenarioError]) -> Any:
