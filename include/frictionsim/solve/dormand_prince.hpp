@@ -300,10 +300,22 @@ private:
                 }
             }
             double t_root = t_;
-            const bool any = roots_.scan(mode_, t_prev_, t_, g1, [this](double t, Guards& g) {
+            const auto at = [this](double t, Guards& g) {
                 interpolate(t, ytmp_.data());
                 guards(t, ytmp_, g);
-            }, t_root);
+            };
+            bool any = false;
+            if constexpr (detail::has_local_guards_v<System>) {  // bracket a guard on the states it reads alone
+                any = roots_.scan(mode_, t_prev_, t_, g1, at, [this](std::size_t i, double t) {
+                    const GuardReads r = sys_.guard_reads(i);
+                    const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
+                    for (std::size_t k = r.first; k < r.last; ++k)  // interpolate()'s expression
+                        ytmp_[k] = rc1_[k] + s * (rc2_[k] + s1 * (rc3_[k] + s * (rc4_[k] + s1 * rc5_[k])));
+                    return sys_.guard(i, t, ytmp_.data(), mode_);
+                }, t_root);
+            } else {
+                any = roots_.scan(mode_, t_prev_, t_, g1, at, t_root);
+            }
             if (!any) return {t_, false};
             if (t_root < t_) {
                 interpolate(t_root, y_.data());

@@ -3,18 +3,48 @@
 // end included), so that a guard that crosses and comes back within one step is not missed (cf. SciML's
 // interp_points), and the earliest crossing is bracketed by Illinois false position to CVODE's ttol.
 // Masking (CVODE's rule): a guard exactly zero at a restart does not count until it has moved off zero.
+//
+// Local guards (issue 22, item 3): a system sized at run time with many guards, each reading a few states (a
+// string's wall contacts), may declare
+//   GuardReads guard_reads(std::size_t i) const                     the states guard i reads, [first, last)
+//   double guard(std::size_t i, double t, const double* x, mode) const   guard i alone, equal bit for bit to
+//                                                                     guards()[i] (x holds at least those states)
+// Then the bracketing evaluates only the guard it brackets, on the dense output of only the states it reads:
+// a located switch costs what its guard reads, not a sweep over the whole system per iteration (the crossings
+// bracketed and the roots found are the same).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "../detail/illinois.hpp"
 #include "hybrid_system.hpp"
 #include "system_size.hpp"
 
-namespace frictionsim::detail {
+namespace frictionsim {
+
+/// The states a guard reads: indices [first, last).
+struct GuardReads {
+    std::size_t first = 0, last = 0;
+};
+
+namespace detail {
+
+/// Does S evaluate one guard alone (guard_reads and guard, above)?
+template <class S, class = void>
+struct has_local_guards : std::false_type {};
+template <class S>
+struct has_local_guards<
+    S, std::void_t<decltype(GuardReads{std::declval<const S&>().guard_reads(std::size_t{})}),
+                   decltype(double{std::declval<const S&>().guard(std::size_t{}, 0.0, std::declval<const double*>(),
+                                                                  std::declval<const system_mode_t<S>&>())})>>
+    : std::true_type {};
+template <class S>
+inline constexpr bool has_local_guards_v = has_local_guards<S>::value;
 
 template <class System>
 class RootLocator {
@@ -54,6 +84,16 @@ public:
     /// t + h); false after no_root(g_end) when none did.
     template <class GuardsAt>
     bool scan(const Mode& mode, double t_prev, double t_end, const Guards& g_end, GuardsAt&& at, double& t_root) {
+        auto one = [&](std::size_t i, double t) {
+            at(t, g_scratch_);
+            return g_scratch_[i];
+        };
+        return scan(mode, t_prev, t_end, g_end, at, one, t_root);
+    }
+    /// scan() with `one(i, t)`, guard i alone on the dense output, for the bracketing (local guards, above).
+    template <class GuardsAt, class GuardAt>
+    bool scan(const Mode& mode, double t_prev, double t_end, const Guards& g_end, GuardsAt&& at, GuardAt&& one,
+              double& t_root) {
         const double tol = 100.0 * std::numeric_limits<double>::epsilon() * (std::abs(t_end) + (t_end - t_prev));
         t_root = t_end;
         double lo = t_prev;
@@ -66,7 +106,7 @@ public:
             for (std::size_t i = 0; i < count(); ++i) {
                 if (crossed(i, reference_[i], g_k_[i], mode) == 0) continue;
                 any = true;
-                t_root = std::min(t_root, bracket(i, mode, lo, t_k, g_lo_[i], g_k_[i], tol, at));
+                t_root = std::min(t_root, bracket(i, mode, lo, t_k, g_lo_[i], g_k_[i], tol, one));
             }
             lo = t_k;
             g_lo_ = g_k_;
@@ -118,15 +158,15 @@ private:
     // Guard i crossed from its reference (not yet at lo, where it is g_lo) to g_hi at hi: Illinois false position
     // on the dense output. Returns the right end of the final bracket, where the guard has already crossed (as
     // CVODE does).
-    template <class GuardsAt>
+    template <class GuardAt>
     double bracket(std::size_t i, const Mode& mode, double lo, double hi, double g_lo, double g_hi, double tol,
-                   GuardsAt& at) {
+                   GuardAt& one) {
         const int dir = sys_.guard_direction(i, mode);
         IllinoisBracket r{lo, g_lo, hi, g_hi};
         for (int iter = 0; iter < 200 && r.b - r.a > tol; ++iter) {
             const double tm = r.next(0.5 * tol);
-            at(tm, g_scratch_);
-            r.move(tm, g_scratch_[i], crossing(reference_[i], g_scratch_[i], dir) != 0);
+            const double g = one(i, tm);
+            r.move(tm, g, crossing(reference_[i], g, dir) != 0);
         }
         return r.b;
     }
@@ -137,4 +177,5 @@ private:
     GuardArray<System, int> roots_;
 };
 
-}  // namespace frictionsim::detail
+}  // namespace detail
+}  // namespace frictionsim
