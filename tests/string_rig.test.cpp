@@ -983,3 +983,178 @@ TEST_CASE("string rig: wall contacts without normal force (a vertical hole) are 
         worst = std::max(worst, std::abs(a.state(row, bit_speed) - b.state(row, b.column("omega_20"))));
     CHECK(worst < 1e-8);
 }
+
+// ---- the drive concept (string/top_drive.hpp, issue 22 item 4) -------------------------------------------------
+
+namespace {
+
+/// A user's drive, written here to the concept of top_drive.hpp: a DC motor on its torque-speed line,
+/// T_m = T_s (1 - w_0 / w_free), with no state and no switching function.
+class DcMotor {
+public:
+    DcMotor(double stall_torque, double free_speed, double inertia)
+        : stall_(stall_torque), free_(free_speed), inertia_(inertia) {}
+    bool holds_speed() const { return false; }
+    double held_speed() const { return free_; }
+    double inertia() const { return inertia_; }
+    std::size_t state_count() const { return 0; }
+    const char* state_name(std::size_t) const { return ""; }
+    double torque(const DriveInput& in, int) const { return stall_ * (1.0 - in.speed / free_); }
+    void rates(const DriveInput&, double, int, double*) const {}
+    bool rates_follow_acceleration() const { return false; }
+    std::size_t guard_count() const { return 0; }
+    int initial_mode(const DriveInput&) const { return 0; }
+    void guards(const DriveInput&, double, int, double*) const {}
+    int switch_mode(const DriveInput&, int mode, const int*) const { return mode; }
+    const char* guard_name(std::size_t, int) const { return ""; }
+    const char* mode_name(int) const { return "dc_motor"; }
+    void torque_partials(const DriveInput&, int, double& d_speed, double*) const { d_speed = -stall_ / free_; }
+    void rate_partials(const DriveInput&, int, std::size_t, double& d_speed, double*, double& d_accel) const {
+        d_speed = d_accel = 0.0;
+    }
+
+private:
+    double stall_, free_, inertia_;
+};
+
+/// Every state and event of two runs equal bit for bit, states matched by name (a drive may lay out fewer).
+void require_same_run(const Result& a, const std::vector<std::string>& names_a, const Result& b,
+                      const std::vector<std::string>& names_b) {
+    REQUIRE(a.rows() == b.rows());
+    REQUIRE(a.events.size() == b.events.size());
+    std::size_t matched = 0;
+    for (std::size_t j = 0; j < names_a.size(); ++j) {
+        const auto at = std::find(names_b.begin(), names_b.end(), names_a[j]);
+        if (at == names_b.end()) continue;
+        ++matched;
+        const auto k = static_cast<std::size_t>(at - names_b.begin());
+        for (std::size_t row = 0; row < a.rows(); ++row) REQUIRE(a.state(row, j) == b.state(row, k));
+    }
+    CHECK(matched + 1 >= names_a.size());  // at most the PI integral unmatched
+    for (std::size_t e = 0; e < a.events.size(); ++e) {
+        REQUIRE(a.events[e].time == b.events[e].time);
+        REQUIRE(a.events[e].name == b.events[e].name);
+        REQUIRE(a.events[e].mode_after == b.events[e].mode_after);
+    }
+    REQUIRE(a.t == b.t);
+}
+
+}  // namespace
+
+TEST_CASE("string rig: PiTopDrive and PrescribedSpeed as drive types run bit for bit as the run-time choice",
+          "[string_rig][top_drive]") {
+    // The same stick-slip runs through StringRig<..., TopDriveChoice> (StringRigSetup::top_drive) and through the
+    // drive types themselves, on every integrator (the analytic Jacobian's drive rows in RODAS4 and CVODE).
+    SECTION("the PI drive, reaching and holding its limit") {
+        // the saturating spin-up of "a top drive that saturates while the string spins up holds its torque limit"
+        StringRigParams p;
+        p.damping_time = 0.01;
+        p.top_drive_inertia = 1000.0;
+        p.surface_speed = 56.234;
+        p.proportional_gain = 1000.0;
+        p.integral_gain = 1e4;
+        p.torque_limit = 1e5;
+        p.inclination = 1.0;
+        StringRigSetup s;
+        s.elements = 4;
+        const VelocityWeakeningBit bit(NavarroLopezBit(), 5e4);
+        const StringRig<Coulomb, VelocityWeakeningBit> choice(pipe_string(800.0), p, s, Coulomb(0.2, 0.25), bit);
+        const StringRig<Coulomb, VelocityWeakeningBit, PiTopDrive> typed(pipe_string(800.0), p, s, Coulomb(0.2, 0.25),
+                                                                         bit, PiTopDrive(PiTopDriveParams::from(p)));
+        REQUIRE(typed.state_size() == choice.state_size());
+        REQUIRE(typed.jacobian_bandwidths().upper == choice.jacobian_bandwidths().upper);
+        std::set<std::string> drive_modes;
+        for (Method m : {Method::dormand_prince, Method::rosenbrock, Method::cvode_bdf}) {
+            SolverOptions o;
+            o.method = m;
+            o.rtol = 1e-8;
+            o.atol = 1e-8;
+            o.output_times = grid(3.0, 0.01);
+            const Result a = simulate(choice, 3.0, o), b = simulate(typed, 3.0, o);
+            REQUIRE(a.completed);
+            require_same_run(a, choice.state_names(), b, typed.state_names());
+            for (const Event& e : a.events)
+                if (e.name.rfind("top_drive.", 0) == 0) drive_modes.insert(e.mode_after_name);
+        }
+        CHECK(drive_modes.count("drive_holding_positive_limit") == 1);
+        CHECK(drive_modes.count("drive_linear") == 1);
+    }
+    SECTION("the prescribed speed (no integral state in the drive type's layout)") {
+        // One state fewer changes the integrators' RMS error norm (sqrt(sum / n)), so the steps differ in the last
+        // bits: the same run to the tolerance, the same switches.
+        const auto legacy = stick_slip_rig(12);
+        const StringRigParams p = legacy.params();
+        StringRigSetup s = legacy.setup();
+        s.top_drive = TopDrive::prescribed_speed;
+        const StringRig<Coulomb, VelocityWeakeningBit> choice(pipe_string(1000.0), p, s, Coulomb(0.2, 0.3),
+                                                              legacy.bit());
+        const StringRig<Coulomb, VelocityWeakeningBit, PrescribedSpeed> typed(
+            pipe_string(1000.0), p, s, Coulomb(0.2, 0.3), legacy.bit(), PrescribedSpeed(p.surface_speed));
+        CHECK(typed.state_size() + 1 == choice.state_size());
+        CHECK(typed.theta(0) == 0);
+        for (Method m : {Method::dormand_prince, Method::rosenbrock}) {
+            SolverOptions o;
+            o.method = m;
+            o.rtol = 1e-7;
+            o.atol = 1e-9;
+            o.output_times = grid(6.0, 0.05);
+            const Result a = simulate(choice, 6.0, o), b = simulate(typed, 6.0, o);
+            REQUIRE(a.events.size() == b.events.size());
+            for (std::size_t e = 0; e < a.events.size(); ++e) {
+                CHECK(a.events[e].name == b.events[e].name);
+                CHECK(a.events[e].time == Approx(b.events[e].time).margin(1e-4));
+            }
+            for (std::size_t i = 0; i <= s.elements; ++i)
+                CHECK(a.column_values("omega_" + std::to_string(i)).back() ==
+                      Approx(b.column_values("omega_" + std::to_string(i)).back()).margin(1e-4));
+        }
+    }
+}
+
+TEST_CASE("string rig: a user's drive type (a DC motor's torque-speed line) turns the string at its closed-form speed",
+          "[string_rig][top_drive]") {
+    // Steady sliding at every wall: all nodes turn at w, the motor's T_s (1 - w / w_free) balances the summed wall
+    // torque T_w = sum mu N_c r_c, so w = w_free (1 - T_w / T_s); element e carries the wall torque below it,
+    // tau_e = sum_{c > e} mu N_c r_c, as a twist tau_e / k_e (the damper idle at equal speeds).
+    StringRigParams p;
+    p.inclination = 0.6;
+    p.damping_time = 0.02;
+    StringRigSetup s;
+    s.elements = 6;
+    const double mu = 0.2, stall = 3.0e4, free = 8.0;
+    const DcMotor motor(stall, free, 200.0);
+    const StringRig<Coulomb, OffBottom, DcMotor> rig(pipe_string(600.0), p, s, Coulomb(mu, 0.25), OffBottom{}, motor);
+    REQUIRE(rig.state_size() == 7 * 2 + 6);  // no drive state: theta_0 first
+    CHECK(rig.state_names().front() == "theta_0");
+    CHECK(rig.node_inertia()[0] == Approx(rig.lumped().node_inertia[0] + 200.0));
+    double wall = 0.0;
+    for (std::size_t c = 0; c < rig.contact_nodes().size(); ++c)
+        wall += mu * rig.normal_forces()[c] * rig.node_radius()[rig.contact_nodes()[c]];
+    REQUIRE(wall < stall);
+    const double w = free * (1.0 - wall / stall);
+    for (Method m : {Method::dormand_prince, Method::rosenbrock}) {
+        SolverOptions o;
+        o.method = m;
+        o.rtol = 1e-9;
+        o.atol = 1e-11;
+        o.output_times = {0.0, 60.0};
+        const Result r = simulate(rig, 60.0, o);
+        REQUIRE(r.completed);
+        const double* x = &r.states[r.state_count()];
+        for (std::size_t i = 0; i <= s.elements; ++i) CHECK(x[rig.omega(i)] == Approx(w).epsilon(1e-6));
+        CHECK(rig.surface_torque(60.0, x, rig.initial_mode(60.0, x)) == Approx(wall).epsilon(1e-6));
+        for (std::size_t e = 0; e < s.elements; ++e) {
+            double below = 0.0;
+            for (std::size_t c = 0; c < rig.contact_nodes().size(); ++c)
+                if (rig.contact_nodes()[c] > e) below += mu * rig.normal_forces()[c] * rig.node_radius()[rig.contact_nodes()[c]];
+            CHECK(-rig.element_torque(x, e) == Approx(below).epsilon(1e-6));
+        }
+        // the work balance closes with the motor's work
+        const double* x0 = &r.states[0];
+        const double stored = rig.kinetic_energy(x) + rig.elastic_energy(x) - rig.kinetic_energy(x0) - rig.elastic_energy(x0);
+        const std::size_t wk = rig.work_offset();
+        using Rig = StringRig<Coulomb, OffBottom, DcMotor>;
+        CHECK(x[wk + Rig::drive_work] ==
+              Approx(stored + x[wk + Rig::wall_friction_work] + x[wk + Rig::damping_work]).epsilon(1e-7));
+    }
+}

@@ -5,12 +5,10 @@
 //   tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e), and the same for the axial force F_e with E A / dx
 // (structural damping proportional to stiffness: modal damping ratio beta w / 2 at frequency w; positions and
 // axial speeds positive down the hole).
-//  * top drive (TopDrive): PI speed control of a motor whose inertia J_td adds to node 0,
-//      T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt, -T_max, T_max),
-//    with the integral frozen while the torque is limited (anti-windup), the limit located as events; where the
-//    linear law would push the torque straight back past the limit and the frozen one back inside (a Filippov
-//    sliding motion along T_m = T_max), the drive holds the limit with the integral following it,
-//    k_i dI/dt = k_p dw_0/dt; or a prescribed surface speed (w_0 = w_set held, the torque it takes recorded as work).
+//  * the top drive (top_drive.hpp, the Drive parameter): a motor whose torque T_m acts on node 0 and whose inertia
+//    adds to it (PiTopDrive: paper 001's PI speed control with a torque limit), or a prescribed surface speed
+//    (w_0 = w_set held, the torque it takes recorded as work), or a user's own type of the drive concept. The
+//    default, TopDriveChoice, picks PiTopDrive or PrescribedSpeed from StringRigSetup::top_drive.
 //  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
 //  * the hole's inclination I_i at each node: the straight hole's, or given per node (a surveyed well:
 //    string_geometry.hpp builds the set-up from a Survey).
@@ -23,14 +21,14 @@
 //    holds a stuck node is known from the state and each contact's stick condition is its own (no joint
 //    complementarity problem is needed at a switch).
 //  * the bit (bit.hpp) at node N, any bit law in (bit speed, weight on bit) -> torque, through DiscContact.
-// States, node by node so that the Jacobian is banded: speed_error_integral, then per node theta_i, omega_i,
+// States, node by node so that the Jacobian is banded: the drive's (speed_error_integral), then per node theta_i, omega_i,
 // [u_i, v_i], [the wall law's states], then the bit law's states and six work integrals that close the balance
 //   drive_work + hoist_work + excitation_work = change of (kinetic + elastic + gravity potential energy)
 //                                               + wall_friction_work + damping_work + bit_work.
 // The work integrals do not feed back, and their rows (which read every node) are left out of the analytic
 // Jacobian: they enter the Newton iteration linearly and converge with the other states.
-// Modes (ContactModes): one per wall contact, then the bit's, then the top drive's (-1, 0, +1: at -T_max,
-// linear, at +T_max). The Result's mode column counts the stuck wall contacts; events name the node.
+// Modes (ContactModes): one per wall contact, then the bit's, then the top drive's when it has switching
+// functions (PiTopDrive: -2 .. 2, see top_drive.hpp). The Result's mode column counts the stuck wall contacts; events name the node.
 #pragma once
 
 #include <algorithm>
@@ -47,18 +45,22 @@
 #include "../detail/validate.hpp"
 #include "../parameters.hpp"
 #include "../solve/jacobian.hpp"
+#include "../solve/root_location.hpp"
 #include "../solve/system_size.hpp"
 #include "../bits/bit.hpp"
 #include "sections.hpp"
 #include "string_rig_params.hpp"
+#include "top_drive.hpp"
 #include "../contact/wall_contact.hpp"
 
 namespace frictionsim {
 
-template <class WallLaw, class Bit = OffBottom>
+template <class WallLaw, class Bit = OffBottom, class Drive = TopDriveChoice>
 class StringRig {
     static_assert(check_friction_law<WallLaw>(), "StringRig<WallLaw, Bit>: WallLaw must meet the FrictionLaw concept");
-    static_assert(check_bit<Bit>(), "StringRig<WallLaw, Bit>: Bit must meet the bit interface (drillstring/bit.hpp)");
+    static_assert(check_bit<Bit>(), "StringRig<WallLaw, Bit>: Bit must meet the bit interface (bits/bit.hpp)");
+    static_assert(check_top_drive<Drive>(),
+                  "StringRig<WallLaw, Bit, Drive>: Drive must meet the drive concept (string/top_drive.hpp)");
     using Wall1 = DiscContact<WallLaw>;
     using Wall2 = PlanarWallContact<WallLaw>;
     using BitContact = DiscContact<Bit>;
@@ -75,10 +77,20 @@ public:
     enum Work : std::size_t { drive_work, hoist_work, excitation_work, wall_friction_work, damping_work, bit_work };
     static constexpr std::size_t work_count = 6;
 
+    using drive_type = Drive;
+
+    /// The default drive: Drive(params, setup) where it takes them (TopDriveChoice), else Drive{}.
     StringRig(const DrillString& string, const StringRigParams& p, StringRigSetup setup, WallLaw law, Bit bit = Bit{})
-        : p_(p), setup_(std::move(setup)), law_(std::move(law)), bit_(std::move(bit)) {
+        : StringRig(string, p, setup, std::move(law), std::move(bit), default_drive(p, setup)) {}
+    /// A given drive (its own parameters: StringRigParams' drive fields are not read).
+    StringRig(const DrillString& string, const StringRigParams& p, StringRigSetup setup, WallLaw law, Bit bit,
+              Drive drive)
+        : p_(p), setup_(std::move(setup)), law_(std::move(law)), bit_(std::move(bit)), drive_(std::move(drive)) {
         constexpr const char* who = "StringRig";
         validate_fields(who, p_, StringRigParams::fields());
+        drive_states_ = drive_.state_count();
+        if (drive_states_ > kMaxDriveStates)
+            detail::reject(who, "drive", "with at most kMaxDriveStates states", static_cast<double>(drive_states_));
         if (setup_.elements == 0) detail::reject(who, "elements", "at least 1", 0.0);
         const std::size_t n = setup_.elements;
         lumped_ = string.lump(n);
@@ -108,7 +120,7 @@ public:
         const double dx = lumped_.element_length;
         inertia_ = lumped_.node_inertia;
         mass_ = lumped_.node_mass;
-        if (setup_.top_drive == TopDrive::pi_motor) inertia_[0] += p_.top_drive_inertia;
+        inertia_[0] += drive_.inertia();
         inertia_[n] += p_.end_inertia;
         mass_[n] += p_.end_mass;
         std::vector<PipeSection> buoyed = string.sections();
@@ -152,17 +164,16 @@ public:
         contacts_ = nodes.size();
         bit_slot_ = contacts_;
         drive_slot_ = bit_slot_ + (on_bottom ? 1 : 0);
-        slots_ = drive_slot_ + (pi_drive() ? 1 : 0);
+        slots_ = drive_slot_ + (drive_has_slot() ? 1 : 0);
         wall_guards_ = axial_ ? Wall2::guard_count : Wall1::guard_count;
         for (std::size_t c = 0; c < contacts_; ++c)
             for (std::size_t k = 0; k < wall_guards_; ++k) add_guard(c, k);
         if constexpr (on_bottom)
             for (std::size_t k = 0; k < BitContact::guard_count; ++k) add_guard(bit_slot_, k);
-        if (pi_drive())
-            for (std::size_t k = 0; k < 2; ++k) add_guard(drive_slot_, k);
+        for (std::size_t k = 0; k < drive_guard_count(); ++k) add_guard(drive_slot_, k);
         start_ = std::vector<double>(state_size(), 0.0);
         for (std::size_t i = 0; i <= n; ++i) {
-            start_[omega(i)] = i == 0 && !pi_drive() ? p_.surface_speed : p_.initial_speed;
+            start_[omega(i)] = i == 0 && drive_.holds_speed() ? drive_.held_speed() : p_.initial_speed;
             if (axial_)
                 start_[speed(i)] = i == 0 && setup_.hoisting == Hoisting::hook_speed ? p_.hook_speed
                                                                                      : p_.initial_axial_speed;
@@ -173,19 +184,21 @@ public:
     std::size_t elements() const { return setup_.elements; }
     std::size_t state_size() const { return work_offset() + work_count; }
     std::size_t guard_count() const { return guard_slot_.size(); }
-    std::size_t theta(std::size_t node) const { return 1 + node * block_; }
-    std::size_t omega(std::size_t node) const { return 2 + node * block_; }
-    std::size_t position(std::size_t node) const { return 3 + node * block_; }  ///< u_i (axial runs)
-    std::size_t speed(std::size_t node) const { return 4 + node * block_; }     ///< v_i (axial runs)
-    std::size_t law_state(std::size_t node) const { return 1 + node * block_ + (axial_ ? 4 : 2); }
-    std::size_t bit_state() const { return 1 + (setup_.elements + 1) * block_; }
+    std::size_t drive_state(std::size_t j) const { return j; }  ///< the drive's states come first
+    std::size_t theta(std::size_t node) const { return drive_states_ + node * block_; }
+    std::size_t omega(std::size_t node) const { return drive_states_ + 1 + node * block_; }
+    std::size_t position(std::size_t node) const { return drive_states_ + 2 + node * block_; }  ///< u_i (axial runs)
+    std::size_t speed(std::size_t node) const { return drive_states_ + 3 + node * block_; }     ///< v_i (axial runs)
+    std::size_t law_state(std::size_t node) const { return drive_states_ + node * block_ + (axial_ ? 4 : 2); }
+    std::size_t bit_state() const { return drive_states_ + (setup_.elements + 1) * block_; }
     std::size_t work_offset() const { return bit_state() + ZB; }
+    /// The PI integral's index (PiTopDrive's and the default drive's one state).
     static constexpr std::size_t speed_error_integral = 0;
 
     const StringRigParams& params() const { return p_; }
     const StringRigSetup& setup() const { return setup_; }
     const LumpedString& lumped() const { return lumped_; }
-    const std::vector<double>& node_inertia() const { return inertia_; }  ///< with J_td at node 0 (PI drive)
+    const std::vector<double>& node_inertia() const { return inertia_; }  ///< with the drive's at node 0
     const std::vector<double>& node_mass() const { return mass_; }
     const std::vector<double>& node_radius() const { return radius_; }
     /// Normal force of each contact, in contact_nodes order.
@@ -201,7 +214,7 @@ public:
     /// w_b,i cos I_i, N: each node's buoyed weight along the hole (with m_end's at node N).
     const std::vector<double>& axial_weights() const { return weight_; }
     const Bit& bit() const { return bit_; }
-    bool pi_drive() const { return setup_.top_drive == TopDrive::pi_motor; }
+    const Drive& drive() const { return drive_; }
 
     /// Replaces the state at t = 0 (size state_size()).
     void set_initial_state(std::vector<double> x) {
@@ -243,15 +256,16 @@ public:
         const double k = lumped_.axial_stiffness[e];
         return k * (x[position(e + 1)] - x[position(e)]) + p_.damping_time * k * (x[speed(e + 1)] - x[speed(e)]);
     }
-    /// k_p (w_set - w_0) + k_i int (w_set - w_0) dt, N m: the PI law before the limit.
-    double controller_torque(const double* x) const {
-        return p_.proportional_gain * (p_.surface_speed - x[omega(0)]) + p_.integral_gain * x[speed_error_integral];
+    /// What the drive sees of node 0 (string_torque: element 0's torque on it).
+    DriveInput drive_input(const double* x, double string_torque) const {
+        return {x + drive_state(0), x[omega(0)], string_torque, inertia_[0]};
     }
-    /// Drive modes: 0 linear; +-1 at the limit with the integral frozen; +-2 holding the limit, the integral
-    /// following it (sliding along T_m = +-T_max).
+    DriveInput drive_input(const double* x) const { return drive_input(x, element_torque(x, 0)); }
+    /// The drive's mode (0 for a drive without switching functions).
+    int drive_mode(const ContactModes& mode) const { return drive_has_slot() ? mode[drive_slot_] : 0; }
+    /// The motor's torque T_m on node 0, N m (0 for a drive that holds the speed: surface_torque() is what it takes).
     double motor_torque(const double* x, const ContactModes& mode) const {
-        const int m = mode[drive_slot_];
-        return m == 0 ? controller_torque(x) : (m > 0 ? 1.0 : -1.0) * p_.torque_limit;
+        return drive_.holds_speed() ? 0.0 : drive_.torque(drive_input(x), drive_mode(mode));
     }
     double excitation_force(double t) const {
         return p_.excitation_amplitude * std::sin(2.0 * pi * p_.excitation_frequency * t);
@@ -264,7 +278,7 @@ public:
     }
     /// The torque the surface applies, N m: the motor's, or what holds the prescribed speed.
     double surface_torque(double t, const double* x, const ContactModes& mode) const {
-        if (pi_drive()) return motor_torque(x, mode);
+        if (!drive_.holds_speed()) return motor_torque(x, mode);
         double s = 0.0, a = 0.0;
         loads(t, x, mode, 0, s, a);
         return -s;
@@ -337,14 +351,44 @@ public:
                     k += BitContact::guard_count;
                 }
         }
-        if (pi_drive()) drive_guards(x, mode, top_acceleration(t, x, mode), g + k);
+        if (drive_has_slot())
+            drive_.guards(drive_input(x), top_acceleration(t, x, mode), drive_mode(mode), g + k);
+    }
+
+    /// The states guard i reads (root_location.hpp's local guards): its node's and its neighbours' blocks (node
+    /// 0's with the drive's states; node N's with the bit's).
+    GuardReads guard_reads(std::size_t i) const {
+        const std::size_t node = guard_node(guard_slot_[i]), n = setup_.elements;
+        return {node >= 1 ? theta(node - 1) : 0, node + 2 <= n ? theta(node + 2) : work_offset()};
+    }
+    /// Guard i alone, as guards() gives it.
+    double guard(std::size_t i, double t, const double* x, const ContactModes& mode) const {
+        const std::size_t slot = guard_slot_[i];
+        std::array<double, kMaxSlotGuards> g{};
+        if (slot == drive_slot_ && drive_has_slot() && !(on_bottom && slot == bit_slot_)) {
+            drive_.guards(drive_input(x), top_acceleration(t, x, mode), drive_mode(mode), g.data());
+            return g[guard_rank_[i]];
+        }
+        const std::size_t node = guard_node(slot);
+        double s = 0.0, a = 0.0;
+        loads(t, x, mode, node, s, a);
+        if (slot < contacts_) {
+            if (axial_)
+                walls2_[slot].guards(x[omega(node)], x[speed(node)], planar_loads(x, node, s, a), x + law_state(node),
+                                     mode[slot], inertia_[node], mass_[node], g.data());
+            else
+                walls1_[slot].guards(x[omega(node)], s, x + law_state(node), mode[slot], inertia_[node], g.data());
+        } else if constexpr (on_bottom) {
+            bit_contact_[0].guards(x[omega(node)], s, x + bit_state(), mode[bit_slot_], inertia_[node], g.data());
+        }
+        return g[guard_rank_[i]];
     }
 
     void rhs_guards(double t, const double* x, const ContactModes& mode, double* dx, double* g) const {
         const std::size_t n = setup_.elements;
         double power[work_count] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
         std::size_t k = 0;
-        dx[speed_error_integral] = pi_drive() && mode[drive_slot_] == 0 ? p_.surface_speed - x[omega(0)] : 0.0;
+        DriveInput top;
         ElementLoads above, below = element_loads(x, 0);
         for (std::size_t i = 0; i <= n; ++i) {
             if (i > 0) {  // each element's torque and tension once: the node above's below is this node's above
@@ -390,8 +434,9 @@ public:
                 }
             }
             if (i == 0) {
-                if (pi_drive()) {
-                    power[drive_work] = motor_torque(x, mode) * w;
+                top = drive_input(x, below.torque - above.torque);
+                if (!drive_.holds_speed()) {
+                    power[drive_work] = drive_.torque(top, drive_mode(mode)) * w;
                 } else {
                     power[drive_work] = -s * w;  // the torque that holds w_0 at w_set
                     dw = 0.0;
@@ -421,29 +466,49 @@ public:
                 power[damping_work] += d;
             }
         }
-        if (pi_drive() && holding_limit(mode))  // k_i dI/dt = k_p dw_0/dt keeps T_m at the limit
-            dx[speed_error_integral] = p_.proportional_gain / p_.integral_gain * dx[omega(0)];
-        if (g != nullptr && pi_drive()) drive_guards(x, mode, dx[omega(0)], g + k);
+        drive_.rates(top, dx[omega(0)], drive_mode(mode), dx + drive_state(0));
+        if (g != nullptr && drive_has_slot()) drive_.guards(top, dx[omega(0)], drive_mode(mode), g + k);
         for (std::size_t j = 0; j < work_count; ++j) dx[work_offset() + j] = power[j];
     }
 
     /// Every node's coupling reaches its neighbours' blocks only (node i's accelerations read nodes i - 1 .. i + 1);
-    /// the PI integral's row, holding the limit, is node 0's acceleration row, which reaches omega_1.
-    Bandwidths jacobian_bandwidths() const { return {block_ + 1, block_ + (can_hold_limit() ? 2 : 1)}; }
+    /// node 0's reads the drive's states, theirs omega_0, and where they follow node 0's acceleration (the PI drive
+    /// holding its limit) that row, which reaches omega_1.
+    Bandwidths jacobian_bandwidths() const {
+        const std::size_t d = drive_states_;
+        return {std::max(block_ + 1, d + 1), std::max(block_ + 1, d + 1 + (drive_.rates_follow_acceleration() ? block_ : 0))};
+    }
 
     /// The analytic Jacobian inside the band (the work integrals' rows left out, see the header comment).
-    template <class Add, class L = WallLaw, class B = Bit,
-              std::enable_if_t<law_has_partials_v<L> && law_has_partials_v<B>, int> = 0>
+    template <class Add, class L = WallLaw, class B = Bit, class D = Drive,
+              std::enable_if_t<law_has_partials_v<L> && law_has_partials_v<B> && top_drive_has_partials_v<D>, int> = 0>
     void jacobian_entries(double t, const double* x, const ContactModes& mode, Add&& add) const {
-        if (pi_drive() && holding_limit(mode)) {  // the integral's row: k_p / k_i times node 0's acceleration row
-            const double ratio = p_.proportional_gain / p_.integral_gain;
-            const std::size_t top = omega(0);
+        const DriveInput top = drive_input(x);
+        const int m = drive_mode(mode);
+        std::array<double, kMaxDriveStates> follow{}, d_state{};  // d(dz_j/dt)/d(dw_0/dt); a row's d/dz
+        bool follows = false;
+        for (std::size_t j = 0; j < drive_states_; ++j) {
+            double d_speed = 0.0;
+            drive_.rate_partials(top, m, j, d_speed, d_state.data(), follow[j]);
+            follows = follows || follow[j] != 0.0;
+        }
+        if (follows) {  // those drive rows take their share of node 0's acceleration row (the PI drive at its limit)
+            const std::size_t row = omega(0);
             node_jacobian_entries(t, x, mode, [&](std::size_t i, std::size_t j, double v) {
                 add(i, j, v);
-                if (i == top) add(speed_error_integral, j, ratio * v);
+                if (i == row)
+                    for (std::size_t q = 0; q < drive_states_; ++q)
+                        if (follow[q] != 0.0) add(drive_state(q), j, follow[q] * v);
             });
         } else {
             node_jacobian_entries(t, x, mode, add);
+        }
+        for (std::size_t j = 0; j < drive_states_; ++j) {  // the drive's rows: d/dw_0, d/dz
+            double d_speed = 0.0, d_acceleration = 0.0;
+            drive_.rate_partials(top, m, j, d_speed, d_state.data(), d_acceleration);
+            if (d_speed != 0.0) add(drive_state(j), omega(0), d_speed);
+            for (std::size_t q = 0; q < drive_states_; ++q)
+                if (d_state[q] != 0.0) add(drive_state(j), drive_state(q), d_state[q]);
         }
     }
 
@@ -461,7 +526,7 @@ private:
             const std::size_t c = contact_of_[i];
             // how the rotation's and the axial motion's accelerations follow S and P (0 while held)
             double torque_share = 1.0, axial_share = 1.0;
-            const bool top_rotation_held = i == 0 && !pi_drive();
+            const bool top_rotation_held = i == 0 && drive_.holds_speed();
             const bool top_axial_held = i == 0 && setup_.hoisting == Hoisting::hook_speed;
             if (c != npos) {
                 if (axial_) {
@@ -522,9 +587,13 @@ private:
                     add(omega(i), omega(i - 1), f * beta * k);
                     add(omega(i), omega(i), -f * beta * k);
                 }
-                if (i == 0 && pi_drive() && mode[drive_slot_] == 0) {
-                    add(omega(0), omega(0), -f * p_.proportional_gain);
-                    add(omega(0), speed_error_integral, f * p_.integral_gain);
+                if (i == 0 && !drive_.holds_speed()) {  // T_m's partials
+                    std::array<double, kMaxDriveStates> d_state{};
+                    double d_speed = 0.0;
+                    drive_.torque_partials(drive_input(x), drive_mode(mode), d_speed, d_state.data());
+                    if (d_speed != 0.0) add(omega(0), omega(0), f * d_speed);
+                    for (std::size_t j = 0; j < drive_states_; ++j)
+                        if (d_state[j] != 0.0) add(omega(0), drive_state(j), f * d_state[j]);
                 }
             }
             if (axial_ && axial_share != 0.0) {
@@ -545,7 +614,6 @@ private:
                 }
             }
         }
-        if (pi_drive() && mode[drive_slot_] == 0) add(speed_error_integral, omega(0), -1.0);
     }
 
 public:
@@ -557,7 +625,7 @@ public:
     /// Names of the codes guard_mode gives: wall contact modes as they are, the bit's + 20, the drive's + 10.
     const char* mode_name(int code) const {
         if (code >= 17 && code <= 23) return bit_mode_names[static_cast<std::size_t>(code - 17)];
-        if (code >= 8 && code <= 12) return drive_mode_names[static_cast<std::size_t>(code - 8)];
+        if (code >= 8 && code <= 12) return drive_.mode_name(code - 10);
         if (axial_) return Wall2::mode_name(code);
         if (!walls1_.empty()) return walls1_[0].mode_name(code);
         return contact_mode_name(code);
@@ -581,10 +649,7 @@ public:
 
     ContactModes initial_mode(double t, const double* x) const {
         ContactModes mode(slots_, 0);
-        if (pi_drive()) {
-            const double u = controller_torque(x);
-            mode[drive_slot_] = static_cast<std::int8_t>(u > p_.torque_limit ? 1 : u < -p_.torque_limit ? -1 : 0);
-        }
+        if (drive_has_slot()) mode[drive_slot_] = static_cast<std::int8_t>(drive_.initial_mode(drive_input(x)));
         const std::size_t n = setup_.elements;
         for (std::size_t i = 0; i <= n; ++i) {
             const std::size_t c = contact_of_[i];
@@ -642,13 +707,14 @@ public:
                 }
             }
         }
-        if (pi_drive() && any(fired + k, 2)) next[drive_slot_] = static_cast<std::int8_t>(drive_switch(t, x, next, fired + k));
+        if (drive_has_slot() && any(fired + k, drive_guard_count()))
+            next[drive_slot_] = static_cast<std::int8_t>(drive_.switch_mode(drive_input(x), next[drive_slot_], fired + k));
         return next;
     }
 
     std::vector<std::string> state_names() const {
         std::vector<std::string> names(state_size());
-        names[speed_error_integral] = "speed_error_integral";
+        for (std::size_t j = 0; j < drive_states_; ++j) names[drive_state(j)] = drive_.state_name(j);
         for (std::size_t i = 0; i <= setup_.elements; ++i) {
             const std::string tag = "_" + std::to_string(i);
             names[theta(i)] = "theta" + tag;
@@ -721,7 +787,7 @@ private:
                        const ElementLoads& below, double& torque, double& axial) const {
         torque = below.torque - above.torque;
         axial = 0.0;
-        if (i == 0 && pi_drive()) torque += motor_torque(x, mode);
+        if (i == 0 && !drive_.holds_speed()) torque += drive_.torque(drive_input(x, torque), drive_mode(mode));
         if (!axial_) return;
         axial = below.tension - above.tension + weight_[i];
         if (i == 0 && setup_.hoisting == Hoisting::hook_load) axial -= p_.hook_load;
@@ -752,9 +818,6 @@ private:
     static constexpr std::array<const char*, 7> bit_mode_names{"bit_mode_-3", "bit_mode_-2", "bit_slip_negative",
                                                                "bit_stick",   "bit_slip_positive", "bit_mode_2",
                                                                "bit_mode_3"};
-    static constexpr std::array<const char*, 5> drive_mode_names{
-        "drive_holding_negative_limit", "drive_at_negative_limit", "drive_linear", "drive_at_positive_limit",
-        "drive_holding_positive_limit"};
 
     static bool any(const int* fired, std::size_t count) {
         for (std::size_t j = 0; j < count; ++j)
@@ -768,49 +831,27 @@ private:
         loads(t, x, mode, 0, torque, axial);
         return torque / inertia_[0];
     }
-    bool can_hold_limit() const { return pi_drive() && p_.integral_gain > 0.0; }
-    bool holding_limit(const ContactModes& mode) const { return mode[drive_slot_] == 2 || mode[drive_slot_] == -2; }
-
-    /// dT/dt of the linear PI law (k_i e - k_p dw_0/dt), times the side s of the limit: > 0 pushes outward.
-    double linear_push(const double* x, double top_acceleration, int side) const {
-        return side * (p_.integral_gain * (p_.surface_speed - x[omega(0)]) - p_.proportional_gain * top_acceleration);
+    /// The node of a mode slot: a wall contact's, the bit's (N), the drive's (0).
+    std::size_t guard_node(std::size_t slot) const {
+        if (slot < contacts_) return setup_.contact_nodes[slot];
+        if (on_bottom && slot == bit_slot_) return setup_.elements;
+        return 0;
     }
-
-    void drive_guards(const double* x, const ContactModes& mode, double top_acceleration, double* g) const {
-        const double u = controller_torque(x), limit = p_.torque_limit;
-        const int m = mode[drive_slot_];
-        if (m == 0) {
-            g[0] = limit - u;  // reaches +T_max
-            g[1] = limit + u;  // reaches -T_max
-        } else if (m == 1 || m == -1) {
-            g[0] = m * (u - m * limit);  // the PI torque comes back inside the limit
-            g[1] = 1.0;
-        } else {
-            const int side = m > 0 ? 1 : -1;
-            g[0] = linear_push(x, top_acceleration, side);  // the linear law turns inward: release
-            g[1] = side * top_acceleration;  // the frozen law turns outward (dT/dt = -k_p dw_0/dt): freeze
-        }
-    }
-
-    /// The drive's new mode when its switching functions fire (`next`: the other slots already switched).
-    int drive_switch(double t, const double* x, const ContactModes& next, const int* fired) const {
-        const int m = next[drive_slot_];
-        if (m == 2 || m == -2) return fired[0] != 0 ? 0 : m / 2;
-        const int side = m != 0 ? m : (fired[0] != 0 ? 1 : -1);
-        ContactModes at_limit = next;
-        at_limit[drive_slot_] = static_cast<std::int8_t>(side);
-        const double dw0 = top_acceleration(t, x, at_limit);
-        const bool linear_out = can_hold_limit() && linear_push(x, dw0, side) > 0.0;
-        if (m == 0) {  // reaching the limit from inside
-            if (side * dw0 <= 0.0) return side;           // the frozen law stays outside
-            return linear_out ? 2 * side : 0;              // sliding, or grazing the limit
-        }
-        return linear_out ? 2 * side : 0;  // back inside: unless the linear law would leave again at once
+    static constexpr std::size_t kMaxSlotGuards = 8;  ///< switching functions per slot (guard()'s scratch)
+    std::size_t drive_guard_count() const { return drive_.guard_count(); }
+    bool drive_has_slot() const { return drive_guard_count() > 0; }
+    static Drive default_drive(const StringRigParams& p, const StringRigSetup& s) {
+        if constexpr (std::is_constructible_v<Drive, const StringRigParams&, const StringRigSetup&>) return Drive(p, s);
+        else return (void)p, (void)s, Drive{};
     }
 
     /// Guard k of slot `slot`, with its name for each mode the slot can be in (events name the node).
     void add_guard(std::size_t slot, std::size_t k) {
+        if (k >= kMaxSlotGuards)
+            detail::reject("StringRig", "guard_count", "at most 8 switching functions per contact or drive",
+                           static_cast<double>(k + 1));
         guard_slot_.push_back(slot);
+        guard_rank_.push_back(k);
         std::array<std::string, 7> names;
         for (int m = -3; m <= 3; ++m) {
             std::string name;
@@ -821,10 +862,7 @@ private:
             } else if (on_bottom && slot == bit_slot_) {
                 if constexpr (on_bottom) name = std::string("bit.") + bit_contact_[0].guard_name(k, m);
             } else {
-                name = m == 0   ? (k == 0 ? "top_drive.positive_torque_limit" : "top_drive.negative_torque_limit")
-                       : m == 1 || m == -1 ? "top_drive.back_inside_limit"
-                       : k == 0            ? "top_drive.released_from_limit"
-                                           : "top_drive.integral_frozen_at_limit";
+                name = std::string("top_drive.") + drive_.guard_name(k, m);
             }
             names[static_cast<std::size_t>(m + 3)] = std::move(name);
         }
@@ -835,6 +873,8 @@ private:
     StringRigSetup setup_;
     WallLaw law_;
     Bit bit_;
+    Drive drive_;
+    std::size_t drive_states_ = 1;
     LumpedString lumped_;
     bool axial_ = false;
     std::size_t block_ = 2;
@@ -844,7 +884,7 @@ private:
     std::vector<Wall2> walls2_;
     std::vector<BitContact> bit_contact_;  // one element with the bit on bottom
     std::size_t contacts_ = 0, bit_slot_ = 0, drive_slot_ = 0, slots_ = 0, wall_guards_ = 0;
-    std::vector<std::size_t> guard_slot_;
+    std::vector<std::size_t> guard_slot_, guard_rank_;  ///< each guard's slot and its index within the slot
     std::vector<std::array<std::string, 7>> guard_names_;
     std::vector<double> start_;
 };

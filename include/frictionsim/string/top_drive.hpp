@@ -213,7 +213,7 @@ private:
 class TopDriveChoice {
 public:
     TopDriveChoice(const StringRigParams& p, const StringRigSetup& s)
-        : pi_(s.top_drive == TopDrive::pi_motor), motor_(PiTopDriveParams::from(p)), held_(p.surface_speed) {}
+        : pi_(s.top_drive == TopDrive::pi_motor), motor_(PiTopDriveParams::from(checked(p))), held_(p.surface_speed) {}
     TopDrive kind() const { return pi_ ? TopDrive::pi_motor : TopDrive::prescribed_speed; }
 
     bool holds_speed() const { return !pi_; }
@@ -248,6 +248,11 @@ public:
     }
 
 private:
+    /// The rig's table first, so that a bad drive field is named as the rig's (as it always was).
+    static const StringRigParams& checked(const StringRigParams& p) {
+        validate_fields("StringRig", p, StringRigParams::fields());
+        return p;
+    }
     bool pi_;
     PiTopDrive motor_;
     PrescribedSpeed held_;
