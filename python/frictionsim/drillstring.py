@@ -41,12 +41,14 @@ __all__ = [
     "field_string",
     "hook_load",
     "replace",
+    "set_speed",
     "stick_slip",
     "stick_slip_map",
     "stick_slip_point",
     "stuck_contacts",
     "surface_speed",
     "surface_torque",
+    "wall_contacts",
 ]
 
 #: 5" drill pipe (19.5 lb/ft: OD 127 mm, ID 108.6 mm) and 6 1/2" x 2 13/16" drill collars, steel.
@@ -60,13 +62,32 @@ def field_string(pipe_length: float = 2800.0, collar_length: float = 200.0) -> D
                         PipeSection(length=collar_length, **DRILL_COLLAR)])
 
 
-def bit_speed(rig: StringRig, result: Result) -> np.ndarray:
-    """Bit speed [rad/s] (node N's) at each row of ``result``."""
+def _time_stepped(rig) -> bool:
+    """A TorsionalString (Moreau-Jean, contacts captured): its Result's columns are its outputs, not node states."""
+    return not hasattr(rig, "omega_index")
+
+
+def set_speed(rig) -> float:
+    """The set surface speed w_set [rad/s]: a StringRig's surface_speed, a TorsionalString's speed_setpoint."""
+    return float(rig.speed_setpoint if _time_stepped(rig) else rig.surface_speed)
+
+
+def wall_contacts(rig) -> int:
+    """How many wall contacts the string has: a StringRig's contact nodes, every node of a TorsionalString."""
+    return int(rig.nodes) if _time_stepped(rig) else len(rig.contact_nodes)
+
+
+def bit_speed(rig, result: Result) -> np.ndarray:
+    """Bit speed [rad/s] (node N's) at each row of ``result`` (of a StringRig or a TorsionalString)."""
+    if _time_stepped(rig):
+        return np.asarray(result["bit_speed"])
     return result.states[:, rig.omega_index(rig.elements)]
 
 
-def surface_speed(rig: StringRig, result: Result) -> np.ndarray:
+def surface_speed(rig, result: Result) -> np.ndarray:
     """Surface (top-drive) speed [rad/s] (node 0's) at each row."""
+    if _time_stepped(rig):
+        return np.asarray(result["top_drive_speed"])
     return result.states[:, rig.omega_index(0)]
 
 
@@ -88,7 +109,9 @@ def _states_at_rest(rig: StringRig, result: Result) -> np.ndarray:
 
 def surface_torque(rig: StringRig, result: Result) -> np.ndarray:
     """Torque the surface applies [N m] at each row: the motor's under PI control (limit included), what holds
-    the prescribed speed otherwise."""
+    the prescribed speed otherwise (a TorsionalString: its PI motor's torque)."""
+    if _time_stepped(rig):
+        return np.asarray(result["motor_torque"])
     return rig.surface_torque(result.t, _states_at_rest(rig, result))
 
 
@@ -114,7 +137,8 @@ class StickSlip:
     """Stick-slip measures of one run after its transient, bit speed against the set surface speed w_set.
 
     peak_ratio, mean_ratio : max and time-mean of the bit speed over w_set
-    stuck_fraction : fraction of the time the bit is stuck (bit speed exactly 0: the engine's stick is exact)
+    stuck_fraction : fraction of the time the bit is stuck (bit speed exactly 0: the engine's stick is exact; a
+        TorsionalString's bit below its slow_speed, as A&S's code counts it)
     sticks : the bit stuck at least once (full stick-slip)
     surface_peak_ratio : max surface speed over w_set (the PI drive's overshoot)
     """
@@ -136,17 +160,18 @@ def stick_slip(rig: StringRig, result: Result, transient: float = 0.0) -> StickS
     if np.count_nonzero(keep) < 2:
         raise ValueError(f"stick_slip: fewer than two rows after transient = {transient} s (the run ends at "
                          f"{t[-1] if len(t) else 0.0} s)")
-    w_set = rig.surface_speed
+    w_set = set_speed(rig)
     if not w_set > 0.0:
         raise ValueError(f"stick_slip: the rig's surface_speed must be positive (got {w_set})")
     t, bit, top = t[keep], bit_speed(rig, result)[keep], surface_speed(rig, result)[keep]
     dt = np.diff(t)
     span = t[-1] - t[0]
     mean = float(np.sum(0.5 * (bit[1:] + bit[:-1]) * dt) / span)
-    stuck = (bit[1:] == 0.0) & (bit[:-1] == 0.0)
+    at_rest = np.abs(bit) <= (float(rig.slow_speed) if _time_stepped(rig) else 0.0)  # A&S count below slow_speed
+    stuck = at_rest[1:] & at_rest[:-1]
     stuck_fraction = float(np.sum(dt[stuck]) / span)
     return StickSlip(peak_ratio=float(np.max(bit) / w_set), mean_ratio=mean / w_set, stuck_fraction=stuck_fraction,
-                     sticks=bool(np.any(bit == 0.0)), surface_peak_ratio=float(np.max(top) / w_set))
+                     sticks=bool(np.any(at_rest)), surface_peak_ratio=float(np.max(top) / w_set))
 
 
 def replace(rig: StringRig, **changes: Any) -> StringRig:
@@ -233,7 +258,7 @@ def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Opt
                    label="surface")
         panel.plot(t[inside], bit_speed(rig, result)[inside], **with_style({"color": "tab:red", "lw": 1.0}, style),
                    label="bit")
-        panel.axhline(rig.surface_speed, color="0.5", lw=0.8, ls="--", label="set speed")
+        panel.axhline(set_speed(rig), color="0.5", lw=0.8, ls="--", label="set speed")
         panel.set_ylabel("speed [rad/s]")
         panel.set_title(label, fontsize=9)
         panel.legend(fontsize=8, loc="upper right")

@@ -173,18 +173,24 @@ class StringRun(_Run):
 
     @property
     def normal_force(self) -> float:
-        """The sum of the wall contacts' normal forces [N]."""
-        return float(np.sum(self.rig.normal_forces))
+        """The sum of the wall contacts' normal forces [N] (NaN for a TorsionalString, whose walls carry a
+        friction torque per length, A&S eq 6)."""
+        forces = getattr(self.rig, "normal_forces", None)
+        return float(np.sum(forces)) if forces is not None else math.nan
 
     def summary(self) -> Dict[str, Any]:
         """One summary row: set speed, weight on bit, peak / mean bit speed over w_set, the bit's stuck fraction,
         the surface speed's peak over w_set, the stuck wall contacts at the end, and the run's counters."""
+        from .. import drillstring as ds
+
         m, rig = self.stick_slip, self.rig
+        weight = rig.weight_on_bit
         return {
             "case": self.case.name, "law": self.case.friction.label, "rig": self.case.rig.type,
-            "surface_speed_rad_s": float(rig.surface_speed),
-            "weight_on_bit_N": float(rig.weight_on_bit) if rig.weight_on_bit is not None else math.nan,
-            "elements": int(rig.elements), "wall_contacts": len(rig.contact_nodes),
+            "treatment": self.case.rig.params.get("treatment", "exact"),
+            "surface_speed_rad_s": ds.set_speed(rig),
+            "weight_on_bit_N": float(weight) if weight is not None and weight > 0 else math.nan,
+            "elements": int(rig.elements), "wall_contacts": ds.wall_contacts(rig),
             "wall_normal_force_N": self.normal_force, "bit_sticks": bool(m.sticks), "peak_ratio": m.peak_ratio,
             "mean_ratio": m.mean_ratio, "bit_stuck_fraction": m.stuck_fraction,
             "surface_peak_ratio": m.surface_peak_ratio, "stuck_contacts_end": int(self.result.mode[-1]),
@@ -426,6 +432,9 @@ class StickSlipAnalysis(Analysis):
             for i, value in enumerate(values):
                 if not (math.isfinite(value) and value > 0.0):
                     raise parser.error(f"{paths[key]}[{i + 1}]", f"must be positive and finite (got {value:g})")
+        if given and case.kind.time_stepping(case.rig):
+            raise parser.error(paths[given[0]], f"a stick-slip map runs the exact treatment only (got treatment "
+                                                f"{case.rig.params['treatment']!r})")
         if given and "bit" not in case.rig.params:
             raise parser.error(paths[given[0]], "a stick-slip map needs a bit on bottom (give rig.bit and "
                                                 "rig.weight_on_bit)")
@@ -475,7 +484,7 @@ class StickSlipAnalysis(Analysis):
             for run in runs:
                 if run.map is not None:
                     figure = ds.string_stick_slip_map_figure(run.map, title=f"{title}: {run.case.name}",
-                                                             point=(float(run.rig.surface_speed),
+                                                             point=(ds.set_speed(run.rig),
                                                                     float(run.rig.weight_on_bit)))
                     written.append(plots.save(figure, directory / f"stick_slip_map_{run.case.name}.png"))
         return written

@@ -18,7 +18,7 @@ import numpy as np
 
 from .. import _core, units
 from ..errors import InvalidParameterError
-from ..simulation import METHODS
+from ..simulation import METHODS, TIME_STEPPING_METHODS
 from .rigs import RIG_KINDS, friction_types, plots_of
 from .specs import AnalysisSpec, Case, FrictionSpec, OutputSpec, RigSpec, Scenario, SolverSpec, TABLES
 from .text import article, join, type_name
@@ -41,10 +41,10 @@ MAX_DATA_FILE_BYTES = 256 * 2**20
 
 #: The SI units of the schema's own keys (the rig and friction keys take theirs from the engine's tables): a value
 #: may be written with a unit, e.g. t_end = "2 min".
-SCHEMA_UNITS = {"t_end": "s", "timeout": "s", "output_step": "s", "transient": "s", "period": "s",
+SCHEMA_UNITS = {"t_end": "s", "timeout": "s", "step": "s", "output_step": "s", "transient": "s", "period": "s",
                 "stick_speed": "rad/s", "surface_speeds": "rad/s", "weights_on_bit": "N", "plot_window": "s"}
 _SOLVER_KEYS = {"t_end": float, "method": str, "rtol": float, "atol": float, "timeout": float, "output_points": int,
-                "output_step": float}
+                "output_step": float, "step": float}
 _OUTPUT_KEYS = {"directory": str, "tables": list, "plots": list, "plot_window": list}
 _CASE_KEYS = ("name", "description", "lubricant", "rig", "friction", "solver", "analysis")
 _TOP_KEYS = ("title", "description", "rig", "friction", "solver", "analysis", "output", "case")
@@ -239,6 +239,7 @@ class _Parser:
             raise self.engine(error, {**friction_paths, **rig_paths}, join(prefix, "rig")) from None
 
         solver = self.solver(*self.section(data, own, prefix, "solver"))
+        self.time_stepping_rules(rig, solver[0], {**solver[1], **rig_paths}, prefix)
         if rig.samples is not None and solver[0].t_end > rig.samples[0][-1]:
             raise self.error(solver[1]["t_end"], f"must be <= the last time of {rig.params['velocity_file']} "
                                                  f"({rig.samples[0][-1]:g} s) (got {solver[0].t_end:g})")
@@ -381,7 +382,7 @@ class _Parser:
             paths[key] = key_path
         if "t_end" not in values:
             raise self.error(join(path, "t_end"), "missing required value (simulated time, s)")
-        for key in ("t_end", "rtol", "atol", "output_step", "timeout"):
+        for key in ("t_end", "rtol", "atol", "output_step", "timeout", "step"):
             if key in values:
                 self.positive(values[key], paths[key])
         if values.get("method", "automatic") not in METHODS:
@@ -400,6 +401,22 @@ class _Parser:
                 raise self.error(paths["output_step"], f"must give at most {MAX_OUTPUT_POINTS:.0e} output points "
                                  f"(t_end / output_step = {values['t_end'] / values['output_step']:.3g})")
         return SolverSpec(**values), paths
+
+    def time_stepping_rules(self, rig: RigSpec, solver: SolverSpec, paths: Dict[str, str], prefix: str) -> None:
+        """A fixed ``step`` and a time-stepping method only for a time-stepping rig (a drillstring's captured or
+        mixed treatment), and an ODE method only for the others."""
+        stepped = rig.kind.time_stepping(rig)
+        if solver.step is not None and not stepped:
+            raise self.error(paths["step"], f"only a time-stepped rig takes a fixed step (a drillstring rig with "
+                                            f"treatment captured or mixed; got {article(rig.type)} {rig.type} rig"
+                                            + (" with treatment exact)" if rig.type == "drillstring" else ")"))
+        if solver.method != "automatic" and (solver.method in TIME_STEPPING_METHODS) != stepped:
+            rule = (f"must be automatic or one of {', '.join(TIME_STEPPING_METHODS)} for a time-stepped rig"
+                    if stepped else f"must not be a time-stepping method ({', '.join(TIME_STEPPING_METHODS)}) on "
+                                    f"an event-driven rig")
+            raise self.error(paths["method"], f"{rule} (treatment {rig.params.get('treatment', 'exact')!r}; got "
+                                              f"{solver.method!r})" if rig.type == "drillstring"
+                             else f"{rule} (got {solver.method!r})")
 
     def engine_solver_rules(self, values: Dict[str, Any], paths: Dict[str, str]) -> None:
         """The engine's own rules on rtol, atol and timeout (SolverOptions.validate), reported at the file's key."""

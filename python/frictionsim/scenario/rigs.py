@@ -89,6 +89,10 @@ class RigKind:
         """The rig object of ``spec`` (a RigSpec) with the law object ``friction``."""
         return self.engine(friction, **spec.params)
 
+    def time_stepping(self, spec) -> bool:
+        """Whether the rig is a time-stepping model (fixed ``step``, methods moreau_jean / explicit_projection)."""
+        return False
+
     def harmonic(self, spec) -> bool:
         """Whether the rig vibrates harmonically, with period :meth:`vibration_period`."""
         return False
@@ -294,17 +298,76 @@ class DrillStringKind(RigKind):
 
     name, engine, analysis = "drillstring", _core.StringRig, STICK_SLIP
     plots = ("bit_speed", "stick_slip_map")
+    #: ``treatment``: "exact" (every contact located as an event: StringRig) or a time-stepping TorsionalString's
+    TREATMENTS = ("exact", "captured", "mixed")
+    #: The StringRig keys a TorsionalString takes for the same physics under another name (its table's)
+    SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elements": "elements",
+              "bit": "bit", "weight_on_bit": "weight_on_bit", "inclination": "inclination",
+              "mud_density": "mud_density", "top_drive_inertia": "top_drive_inertia",
+              "proportional_gain": "proportional_gain", "integral_gain": "integral_gain"}
+    #: TorsionalString keys the scenario gives elsewhere: [friction] (a coulomb law's mu_static, mu / mu_static)
+    #: and the shared keys' StringRig names
+    _FROM_FRICTION = ("friction_coefficient", "kinetic_ratio")
+
+    @staticmethod
+    def _keywords(engine, skip) -> Dict[str, Any]:
+        return {p.name: p for p in laws.parameters(engine, skip)}
+
+    @functools.cached_property
+    def exact_keys(self) -> Dict[str, Any]:
+        """StringRig's keywords (after the string and the law)."""
+        return self._keywords(self.engine, ("self", "string", "friction"))
+
+    @functools.cached_property
+    def captured_keys(self) -> Dict[str, Any]:
+        """TorsionalString's own keywords: those not under a shared StringRig name nor read from [friction]
+        (empty without Eigen, where there is no TorsionalString)."""
+        engine = getattr(_core, "TorsionalString", None)
+        if engine is None:
+            return {}
+        taken = set(self.SHARED.values()) | set(self._FROM_FRICTION) | {"treatment"}
+        return {name: p for name, p in self._keywords(engine, ("self", "string")).items() if name not in taken}
 
     @functools.cached_property
     def keys(self) -> Dict[str, type]:
-        keys: Dict[str, type] = {"sections": list}
-        for p in laws.parameters(self.engine, ("self", "string", "friction")):
-            keys[p.name] = dict if p.name == "bit" else list if p.kind is tuple else p.kind
+        keys: Dict[str, type] = {"sections": list, "treatment": str}
+        for name, p in {**self.exact_keys, **self.captured_keys}.items():
+            keys[name] = dict if name in ("bit", "survey") else list if p.kind is tuple else p.kind
         return keys
 
     @functools.cached_property
+    def units(self) -> Dict[str, str]:
+        engine = getattr(_core, "TorsionalString", None)
+        return {**(units.units_of(engine) if engine is not None else {}), **units.units_of(self.engine)}
+
+    @functools.cached_property
     def defaults(self) -> Dict[str, Any]:
-        return {p.name: p.default for p in laws.parameters(self.engine, ("self", "string", "friction"))}
+        return {name: p.default for name, p in self.exact_keys.items()}
+
+    @staticmethod
+    def treatment(spec) -> str:
+        """The spec's contact treatment: "exact" (default), "captured" or "mixed"."""
+        return spec.params.get("treatment", "exact")
+
+    def time_stepping(self, spec) -> bool:
+        return self.treatment(spec) != "exact"
+
+    def _check_treatment(self, parser, params, paths, path) -> None:
+        """The treatment's name, and the keys it cannot honour refused naming it."""
+        treatment = params.get("treatment", "exact")
+        if treatment not in self.TREATMENTS:
+            raise parser.error(paths["treatment"], f"must be one of {', '.join(self.TREATMENTS)} (got {treatment!r})")
+        if treatment != "exact" and getattr(_core, "TorsionalString", None) is None:
+            raise parser.error(paths["treatment"], f"treatment {treatment!r} needs the engine built with Eigen "
+                                                   f"(frictionsim.HAS_EIGEN is False)")
+        allowed = (set(self.exact_keys) if treatment == "exact" else set(self.SHARED) | set(self.captured_keys))
+        allowed |= {"sections", "treatment"}
+        for key in params:
+            if key not in allowed:
+                other = "exact" if treatment != "exact" else "captured / mixed"
+                raise parser.error(paths[key], f"treatment {treatment!r} cannot take it (a key of the {other} "
+                                               f"treatment; the {treatment} treatment takes: "
+                                               f"{', '.join(k for k in self.keys if k in allowed)})")
 
     def _table(self, parser, value, cls, path: str, paths: Dict[str, str]):
         """A table of ``cls``'s keys (a PipeSection or the bit), checked by building it."""
@@ -320,6 +383,7 @@ class DrillStringKind(RigKind):
         return numbers
 
     def check(self, parser, params, paths, path):
+        self._check_treatment(parser, params, paths, path)
         if "sections" not in params:
             raise parser.error(join(path, "sections"), "missing required value: the string's sections, top to "
                                                        "bottom (an array of tables of PipeSection keys)")
@@ -335,6 +399,17 @@ class DrillStringKind(RigKind):
         elif "weight_on_bit" in params:
             raise parser.error(paths["weight_on_bit"], "needs a bit (give rig.bit; without it the bit is off "
                                                        "bottom)")
+        if "survey" in params:
+            table = parser.table(params["survey"], paths["survey"])
+            parser.unknown(table, ("measured_depth", "inclination"), paths["survey"])
+            for key in ("measured_depth", "inclination"):
+                if key not in table:
+                    raise parser.error(join(paths["survey"], key), "missing required value (an array of numbers)")
+            params["survey"] = tuple(parser.numbers(table[key], None, "", join(paths["survey"], key),
+                                                    {"measured_depth": "m", "inclination": "rad"}[key])
+                                     for key in ("measured_depth", "inclination"))
+        if "contact_radius" in params:
+            params["contact_radius"] = parser.numbers(params["contact_radius"], None, "", paths["contact_radius"], "m")
         if "contact_nodes" in params:
             params["contact_nodes"] = tuple(parser.value(v, int, f"{paths['contact_nodes']}[{i + 1}]")
                                             for i, v in enumerate(params["contact_nodes"]))
@@ -349,10 +424,26 @@ class DrillStringKind(RigKind):
         string = _core.DrillString([_core.PipeSection(**section) for section in params.pop("sections")])
         if "bit" in params:
             params["bit"] = _core.NavarroLopezBit(**params["bit"])
-        return self.engine(string, friction, **params)
+        treatment = params.pop("treatment", "exact")
+        if treatment == "exact":
+            return self.engine(string, friction, **params)
+        captured = {self.SHARED.get(key, key): value for key, value in params.items()}
+        captured.update(self.wall_coefficients(friction))
+        return _core.TorsionalString(string, treatment=treatment, **captured)
+
+    @staticmethod
+    def wall_coefficients(friction) -> Dict[str, float]:
+        """A TorsionalString's wall friction from the [friction] law: a Coulomb law's static coefficient is its
+        friction_coefficient mu, its kinetic one over that the kinetic_ratio f_rat (A&S eq 4)."""
+        if not isinstance(friction, _core.Coulomb):
+            raise InvalidParameterError(f"friction: must be coulomb under treatment captured or mixed (A&S eq 4: "
+                                        f"static mu, kinetic f_rat mu; got {type(friction).__name__})", "friction")
+        mu_s, mu_k = float(friction.mu_static), float(friction.mu)
+        return {"friction_coefficient": mu_s, "kinetic_ratio": mu_k / mu_s if mu_s > 0 else 1.0}
 
     def describe(self, spec) -> str:
-        return "a drillstring rig"
+        treatment = self.treatment(spec)
+        return "a drillstring rig" + ("" if treatment == "exact" else f" ({treatment} contacts, time-stepped)")
 
     def columns(self, run) -> Dict[str, np.ndarray]:
         """wall_friction_torque (the Result's friction_force: the sum over the wall contacts), surface_torque,
@@ -360,6 +451,8 @@ class DrillStringKind(RigKind):
         from .. import drillstring as ds
 
         r, rig = run.result, run.rig
+        if self.time_stepping(run.case.rig):
+            return {}  # a TorsionalString's Result holds its outputs (bit_speed, motor_torque, ...) as its states
         return {"wall_friction_torque": r.friction_force, "surface_torque": ds.surface_torque(rig, r),
                 "bit_torque": ds.bit_torque(rig, r), "stuck_contacts": ds.stuck_contacts(r)}
 

@@ -34,7 +34,7 @@ def run_case(case: Case):
     s = case.solver
     start = time.perf_counter()
     result = simulate(rig, s.t_end, method=s.method, rtol=s.rtol, atol=s.atol, output_times=case.output_times(),
-                      timeout=s.timeout)
+                      timeout=s.timeout, step=s.step)
     return case.kind.analysis.measure(case, rig, result, time.perf_counter() - start)
 
 

@@ -83,6 +83,7 @@ class SolverSpec:
     output_points: Optional[int] = 2001
     output_step: Optional[float] = None
     timeout: Optional[float] = None  #: wall-clock budget of each run [s]
+    step: Optional[float] = None  #: a time-stepped rig's fixed step [s] (None: the engine's)
 
     def grid(self) -> np.ndarray:
         """The requested output times [s] over [0, t_end]."""
