@@ -1,0 +1,130 @@
+"""The scenario type "drillstring" under its contact treatments (issue 22 item 2): "captured" and "mixed" build a
+fs.TorsionalString (Moreau-Jean, the walls' switches captured) from the scenario's keys and run it with a fixed
+step, bit for bit what fs.simulate gives the same string built by hand; a key or setting the chosen treatment
+cannot honour is refused at its dotted path, naming the treatment; the packaged Well B example runs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import frictionsim as fs
+from frictionsim import drillstring as ds
+from frictionsim import scenario
+
+pytestmark = pytest.mark.skipif(not fs.HAS_EIGEN, reason="TorsionalString needs the engine built with Eigen")
+
+EXAMPLE = Path(__file__).resolve().parent.parent.parent / "examples" / "scenarios" / "well_b_captured.toml"
+
+CAPTURED = """
+[rig]
+type = "drillstring"
+treatment = "captured"
+sections = [{ length = 900.0 }, { length = 100.0, outer_diameter = 0.1651, inner_diameter = 0.0714 }]
+elements = 60
+inclination = 1.0
+mud_density = 1200.0
+surface_speed = 4.0
+top_drive_inertia = 300.0
+proportional_gain = 3e3
+integral_gain = 1e3
+damping_rate = 0.05
+[friction]
+type = "coulomb"
+mu = 0.2
+mu_static = 0.3
+[solver]
+t_end = 20.0
+step = 2e-3
+output_step = 0.02
+"""
+
+SECTIONS = [fs.PipeSection(length=900.0), fs.PipeSection(length=100.0, outer_diameter=0.1651, inner_diameter=0.0714)]
+BY_HAND = dict(elements=60, inclination=1.0, mud_density=1200.0, speed_setpoint=4.0, top_drive_inertia=300.0,
+               proportional_gain=3e3, integral_gain=1e3, damping_rate=0.05, friction_coefficient=0.3,
+               kinetic_ratio=0.2 / 0.3)
+
+
+def _with(text: str, old: str, new: str) -> str:
+    assert old in text
+    return text.replace(old, new, 1)
+
+
+def _bit_speed_by_hand(treatment: str, **extra):
+    string = fs.TorsionalString(fs.DrillString(SECTIONS), treatment=treatment, **{**BY_HAND, **extra})
+    times = np.linspace(0.0, 20.0, 1001)  # output_step = 0.02 s
+    return string, fs.simulate(string, 20.0, method="moreau_jean", step=2e-3, output_times=times)
+
+
+def test_a_captured_case_is_the_torsional_string_built_by_hand():
+    run = scenario.run_case(scenario.loads(CAPTURED).cases[0])
+    string, result = _bit_speed_by_hand("captured")
+    assert isinstance(run.rig, fs.TorsionalString) and run.rig.treatment == "captured"
+    assert run.rig.friction_coefficient == 0.3 and run.rig.kinetic_ratio == pytest.approx(2.0 / 3.0)
+    np.testing.assert_array_equal(run.result.t, result.t)
+    np.testing.assert_array_equal(run.result["bit_speed"], result["bit_speed"])
+    np.testing.assert_array_equal(ds.surface_torque(run.rig, run.result), result["motor_torque"])
+    # the physics of the run: once the string turns steadily at the set speed, the motor holds every wall contact
+    # slipping (f_rat times A&S eq 27's break-off torque) and the viscous damping k_t J omega of every node (eq 3)
+    assert np.all(np.abs(result["bit_speed"][-50:] / 4.0 - 1.0) < 0.05)  # the bit rings lightly about w_set
+    steady = string.kinetic_ratio * string.breakoff_torque + string.damping_rate * np.sum(string.node_inertia) * 4.0
+    assert np.mean(result["motor_torque"][-50:]) == pytest.approx(steady, rel=5e-3)
+
+
+def test_a_mixed_case_with_the_bit_on_bottom_is_the_torsional_string_built_by_hand():
+    text = _with(CAPTURED, 'treatment = "captured"', 'treatment = "mixed"\nweight_on_bit = 2e4\n'
+                                                    'bit = { stick_band = 0.1 }')
+    run = scenario.run_case(scenario.loads(text).cases[0])
+    _, result = _bit_speed_by_hand("mixed", weight_on_bit=2e4, bit=fs.NavarroLopezBit(stick_band=0.1))
+    np.testing.assert_array_equal(run.result["bit_speed"], result["bit_speed"])
+    summary = run.summary()
+    assert summary["treatment"] == "mixed" and summary["weight_on_bit_N"] == 2e4
+    measures = ds.stick_slip(run.rig, result, 10.0)  # after the default transient, t_end / 2
+    assert summary["peak_ratio"] == measures.peak_ratio and summary["bit_stuck_fraction"] == measures.stuck_fraction
+
+
+@pytest.mark.parametrize("old, new, key, words", [
+    ('treatment = "captured"', 'treatment = "implicit"', "rig.treatment", "exact, captured, mixed"),
+    ("elements = 60", "elements = 60\ntorque_limit = 6e4", "rig.torque_limit", "treatment 'captured' cannot"),
+    ("elements = 60", "elements = 60\ndamping_time = 2e-3", "rig.damping_time", "treatment 'captured' cannot"),
+    ('treatment = "captured"', 'treatment = "exact"', "rig.damping_rate", "treatment 'exact' cannot"),
+    ('type = "coulomb"\nmu = 0.2\nmu_static = 0.3', 'type = "dahl"\nmu = 0.2\ntangential_stiffness = 1e4',
+     "friction.type", "coulomb under treatment captured"),
+    ("step = 2e-3", 'step = 2e-3\nmethod = "dormand_prince"', "solver.method", "treatment 'captured'"),
+    ("output_step = 0.02", 'output_step = 0.02\n[analysis]\nsurface_speeds = [2.0]\nweights_on_bit = [1e4]',
+     "analysis.surface_speeds", "treatment 'captured'"),
+])
+def test_what_the_treatment_cannot_take_is_refused_at_its_key(old, new, key, words):
+    with pytest.raises(scenario.ScenarioError) as error:
+        scenario.loads(_with(CAPTURED, old, new), source="s.toml")
+    assert error.value.file == "s.toml" and error.value.key == key
+    assert words in error.value.rule
+    assert str(error.value).startswith(f"s.toml: {key}: ")
+
+
+def test_a_step_needs_a_time_stepped_treatment():
+    text = _with(_with(CAPTURED, 'treatment = "captured"', 'treatment = "exact"'), "damping_rate = 0.05\n", "")
+    with pytest.raises(scenario.ScenarioError) as error:
+        scenario.loads(text, source="s.toml")
+    assert error.value.key == "solver.step" and "treatment exact" in error.value.rule
+
+
+def test_the_well_b_example_runs_and_sticks_and_slips(tmp_path):
+    text = _with(_with(EXAMPLE.read_text(), "t_end = 40.0", "t_end = 20.0"), "transient = 15.0", "transient = 8.0")
+    case = scenario.loads(text, source=EXAMPLE).cases[0]
+    assert case.rig.params["elements"] == 500 and case.rig.params["treatment"] == "captured"
+    run = scenario.run(scenario.loads(text, source=EXAMPLE))
+    well_b = fs.aarsnes_shor_well_b(measured_depth=2500.0, elements=500)
+    rig = run.runs[0].rig
+    # the scenario's keys give the preset's string: the same walls (A&S eq 27) and the same stick-slip estimate
+    assert rig.breakoff_torque == pytest.approx(well_b.breakoff_torque, rel=1e-6)
+    assert rig.period_estimate == pytest.approx(well_b.period_estimate, rel=1e-6)
+    summary = run.summary().iloc[0]
+    assert summary["bit_sticks"] and 0.0 < summary["bit_stuck_fraction"] < 1.0 and summary["peak_ratio"] > 1.5
+    written = run.write(tmp_path)
+    names = {path.name for path in written}
+    assert {"summary.csv", "bit_speed.png", "metadata.json"} <= names
+    frame = run.runs[0].timeseries()
+    assert {"bit_speed", "top_drive_speed", "motor_torque"} <= set(frame.columns)
