@@ -45,7 +45,16 @@ key by key, unless the case changes ``type``, in which case the default table is
     keywords (damping_time [s], surface_speed [rad/s], proportional_gain, integral_gain, torque_limit [N m],
     inclination [rad], mud_density [kg/m^3], ..., elements, top_drive ("pi_motor" or "prescribed_speed"), axial,
     hoisting, wall_contacts, contact_nodes, normal_forces [N], excitation_node). The friction law acts at every
-    wall contact. A file's cases are either all drill strings or none
+    wall contact. ``treatment``: "exact" (default: the StringRig, every contact's stick and slip located as an
+    event), "captured" or "mixed" (a :class:`frictionsim.TorsionalString`, Aarsnes & Shor's string stepped by
+    Moreau-Jean with a fixed ``solver.step`` [s]: every wall contact's switches captured, the bit's too or, "mixed",
+    located exactly). Those two take the keys of the same physics (sections, elements, surface_speed as its
+    speed_setpoint, end_inertia as its bha_inertia, bit, weight_on_bit, inclination, mud_density,
+    top_drive_inertia, proportional_gain, integral_gain), the rest of the TorsionalString's own keywords (survey as
+    a table of measured_depth [m] and inclination [rad] arrays, contact_radius, damping_rate, control_period,
+    stick_band_speed, slow_speed, ...), and a coulomb [friction] (mu_static its friction_coefficient, mu /
+    mu_static its kinetic_ratio); a key the treatment cannot honour is refused naming it, and defaults are each
+    engine's own. A file's cases are either all drill strings or none
     (:class:`frictionsim.scenario.rigs.DrillStringKind`).
 ``friction``
     ``type`` = "coulomb" | "stribeck" | "dahl" | "lugre" | "elasto_plastic" and the constructor's parameters by

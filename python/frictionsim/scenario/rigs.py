@@ -285,6 +285,10 @@ class DrillStringKind(RigKind):
       with ``weight_on_bit`` [N] (without ``bit`` the bit hangs off bottom); and the StringRig keywords: the
       table's (damping_time, surface_speed, proportional_gain, inclination, ...) and elements, top_drive,
       axial, hoisting, wall_contacts, contact_nodes, normal_forces, excitation_node;
+    * ``treatment``: "exact" (the StringRig) or "captured" / "mixed": a :class:`~frictionsim.TorsionalString`
+      run by Moreau-Jean with ``solver.step``, built from :data:`SHARED` (StringRig name -> its name), its own
+      table's other keywords (:attr:`captured_keys`) and the walls of a coulomb law (:meth:`wall_coefficients`);
+      the other treatment's keys are refused, and so is a stick-slip map (it reruns the exact rig);
     * friction: the wall contacts' law, any engine law (coulomb, stribeck, dahl, lugre, ...);
     * analysis: the bit's stick-slip after ``transient`` [s] (default t_end / 2) and, with ``surface_speeds``
       [rad/s] and ``weights_on_bit`` [N], the stick-slip map over that grid
