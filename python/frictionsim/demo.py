@@ -27,7 +27,9 @@
    (:func:`field_rig`); its stick-slip map over surface speed and weight on bit
    (:func:`frictionsim.drillstring.stick_slip_map`, 60 s from rest per point, measured after 30 s:
    ``stick_slip_map.csv`` and ``.png``) and, at one stick-slip point, bit and surface speed and torque over time
-   (``time_series.csv``, ``speeds.png``).
+   (``time_series.csv``, ``speeds.png``). Then Well B (Aarsnes & Shor 2018) at field resolution through the
+   drillstring scenario's captured treatment (the built-in scenario ``well_b_captured``: a TorsionalString, 40 s,
+   1000 elements; --quick 500): ``well_b_captured.csv`` and ``.png`` (:func:`well_b_captured`).
 7. A horizontal well (issue 14), into ``<out>/horizontal_well/``: the example survey with a 3 km lateral
    (examples/surveys/horizontal_3km.csv), 4700 m of 5" pipe over 150 m of 6 1/2" collars, soft-string torque and
    drag: the broomstick over friction factors 0.15-0.35 with, beside tripping, the string slid in at the drilling
@@ -45,18 +47,20 @@ anything is written (:func:`compute`, then :meth:`Demo.write`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from importlib import resources
-from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import drillstring as ds
 from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_comparison
 from .scenario import Scenario, ScenarioRun, loads, run
+from .scenario.analyses import STICK_SLIP
 from .torsional import FIG7 as PAPER001_FIG7
 
 __all__ = ["BUILTIN_SCENARIOS", "STAGES", "Demo", "FieldString", "HorizontalWell", "Paper001", "builtin_scenario",
@@ -319,6 +323,9 @@ class FieldString:
     measures: "ds.StickSlip"
     map: "ds.StickSlipMap"
     map_seconds: float  #: wall time of the map [s]
+    #: Well B at field resolution through the captured treatment (the built-in scenario well_b_captured): a
+    #: frictionsim.scenario.StringRun of a TorsionalString
+    captured: Any = None
 
     def time_series(self):
         import pandas as pd
@@ -354,10 +361,24 @@ class FieldString:
             f"({int(m.sticks.sum())} of {m.sticks.size} points; {m.sticks.size} simulations of {FIELD_T_END:g} s on "
             f"{MAP_THREADS} threads in {self.map_seconds:.2f} s" + ("; --quick grid" if quick else "") + ")",
             self.map_text(),
+            *self.captured_report(),
         ]
 
+    def captured_report(self) -> List[str]:
+        if self.captured is None:
+            return []
+        run, x = self.captured, self.captured.stick_slip
+        rig = run.rig
+        return [f"9. Well B (Aarsnes & Shor 2018) at field resolution, treatment captured: {rig.elements} elements "
+                f"({rig.nodes} wall contacts captured by Moreau-Jean, step {run.case.solver.step:g} s), "
+                f"{run.case.solver.t_end:g} s in {run.wall_time:.2f} s: after {STICK_SLIP.transient(run.case):g} s "
+                f"the bit peaks at {x.peak_ratio:.2f} w_set and is below {rig.slow_speed:g} rad/s "
+                f"{100 * x.stuck_fraction:.0f} % of the time (break-off torque, A&S eq 27: "
+                f"{rig.breakoff_torque / 1e3:.2f} kN m; period estimate, eq 40: {rig.period_estimate:.1f} s)"]
+
     def write(self, directory: Path) -> List[Path]:
-        """Write field_string/: time_series.csv, speeds.png, stick_slip_map.csv/.png."""
+        """Write field_string/: time_series.csv, speeds.png, stick_slip_map.csv/.png, and Well B's captured run
+        (well_b_captured.csv, well_b_captured.png)."""
         from . import plots
 
         directory.mkdir(parents=True)
@@ -372,6 +393,14 @@ class FieldString:
         written.append(plots.save(ds.string_stick_slip_map_figure(
             self.map, title=f"field string, {FIELD_T_END:g} s from rest per point, measured after "
                             f"{FIELD_TRANSIENT:g} s", point=FIELD_POINT), directory / "stick_slip_map.png"))
+        if self.captured is not None:
+            run = self.captured
+            written.append(directory / "well_b_captured.csv")
+            run.timeseries().to_csv(written[-1], index=False, float_format="%.10g")
+            written.append(plots.save(ds.speeds_panels_figure(
+                [(f"{run.rig.elements} elements, captured", run.rig, run.result)],
+                title="Well B (Aarsnes & Shor 2018), wall contacts captured by Moreau-Jean"),
+                directory / "well_b_captured.png"))
         return written
 
 
@@ -390,7 +419,18 @@ def field_string(quick: bool = False) -> FieldString:
     with ThreadPoolExecutor(MAP_THREADS) as executor:
         grid = ds.stick_slip_map(rig, speeds, weights, t_end=FIELD_T_END, transient=FIELD_TRANSIENT, rtol=1e-6,
                                  executor=executor)
-    return FieldString(rig, result, measures, grid, time.perf_counter() - start)
+    map_seconds = time.perf_counter() - start
+    return FieldString(rig, result, measures, grid, map_seconds, well_b_captured(quick))
+
+
+def well_b_captured(quick: bool = False):
+    """The built-in scenario well_b_captured run (500 elements, 40 s; the full demo: 1000, A&S's grid)."""
+    from .scenario import run_case
+
+    case = builtin_scenario("well_b_captured").cases[0]
+    if not quick:
+        case = dataclasses.replace(case, rig=case.rig.with_params(elements=1000))
+    return run_case(case)
 
 
 #: The horizontal well's case: friction factors of the broomstick, the tool (force amplitude [N], height above
