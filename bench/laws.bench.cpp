@@ -71,7 +71,7 @@ std::vector<StreamPoint> make_stream() {
 
 /// One call's inputs in a law's units. `load` is the force needed to stick (N) for the engine's laws and the
 /// shaft torque S (N m) for eq 6; `acceleration` is used by eq 6 only.
-constexpr std::size_t max_states = 4;
+constexpr std::size_t max_states = 16;  // GMS 4 blocks; Leuven 12 (its turning-point memory)
 struct Sample {
     double velocity, normal_force, load;
     std::array<double, max_states> z;

@@ -85,13 +85,18 @@ PYBIND11_MODULE(_core, m) {
     register_callable_law(m);
     register_results(m);
     register_contact(m);
-    // the rigs simulate() runs: each register_* binds one and hands its class back
-    py::tuple rigs = py::make_tuple(register_axial(m), register_kinematic(m), register_torsional(m),
-                                    register_drillstring(m), register_navarro_lopez_2dof(m),
-                                    register_navarro_lopez_4dof(m));
-    if (const py::object field = register_torsional_string(m); !field.is_none())  // needs Eigen
-        rigs = py::reinterpret_steal<py::tuple>(PySequence_Concat(rigs.ptr(), py::make_tuple(field).ptr()));
-    m.attr("RIGS") = rigs;
+    // the rigs simulate() runs: each register_* binds one and hands its class back. In order, one statement each
+    // (a function's arguments are evaluated in no set order): the Navarro-Lopez rigs return fs.NavarroLopezBit,
+    // which register_drillstring binds, and a signature read before that names the C++ type.
+    py::list rigs;
+    rigs.append(register_axial(m));
+    rigs.append(register_kinematic(m));
+    rigs.append(register_torsional(m));
+    rigs.append(register_drillstring(m));
+    rigs.append(register_navarro_lopez_2dof(m));
+    rigs.append(register_navarro_lopez_4dof(m));
+    if (const py::object field = register_torsional_string(m); !field.is_none()) rigs.append(field);  // needs Eigen
+    m.attr("RIGS") = py::tuple(rigs);
     register_wells(m);
     guard_construction(m);
 }

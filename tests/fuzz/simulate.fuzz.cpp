@@ -1,5 +1,6 @@
 // Fuzz target (issue 11): bytes -> a friction law, a rig and solver options -> construct and run a short
-// simulation. Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a stop with
+// simulation; a first byte 0xFF draws a field model instead (issue 22): the Aarsnes-Shor TorsionalString with its
+// treatment (captured / exact bit, on or off bottom) and a time-stepping method, or a Navarro-Lopez rig. Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a stop with
 // its time and partial result), or a completed Result whose every value is finite. Anything else (a crash, a
 // sanitizer report, another exception, a "completed" run with NaN) aborts, so libFuzzer reports it.
 //
@@ -16,7 +17,9 @@
 #include <iterator>
 #include <vector>
 
+#include <frictionsim/rigs/navarro_lopez.hpp>
 #include <frictionsim/simulate.hpp>
+#include <frictionsim/string/torsional_string.hpp>
 
 using namespace frictionsim;
 
@@ -103,8 +106,44 @@ Law law_from(Bytes& in) {
     return Law(params_from<typename Law::Params>(Law::fields, in));
 }
 
+/// A time-stepping model: a small TorsionalString (1-16 elements, sections and parameters from their tables), the
+/// bit's treatment, Moreau-Jean or the explicit projection with a drawn step; or a Navarro-Lopez rig on an ODE method.
+void run_field(Bytes& in) {
+    const std::uint8_t which = in.byte() % 3;
+    if (which > 0) {
+        const SolverOptions o = options(in);
+        const double t_end = in.byte() & 1 ? in.number() : 0.5;
+        if (which == 1)
+            require_finite(simulate(NavarroLopezRig<NavarroLopez2DofParams>(params_from<NavarroLopez2DofParams>(
+                                        NavarroLopez2DofParams::fields(), in)),
+                                    t_end, o));
+        else
+            require_finite(simulate(NavarroLopezRig<NavarroLopez4DofParams>(params_from<NavarroLopez4DofParams>(
+                                        NavarroLopez4DofParams::fields(), in)),
+                                    t_end, o));
+        return;
+    }
+    std::vector<PipeSection> sections(1 + in.byte() % 2);
+    for (PipeSection& s : sections) s = params_from<PipeSection>(PipeSection::fields(), in);
+    const auto p = params_from<TorsionalStringParams>(TorsionalStringParams::fields(), in);
+    const std::size_t elements = 1 + in.byte() % 16;
+    TorsionalString model(DrillString(sections), p, elements);
+    model.set_bit_treatment(in.byte() & 1 ? BitTreatment::exact : BitTreatment::captured);
+    SolverOptions o;
+    o.method = in.byte() & 1 ? Method::explicit_projection : Method::moreau_jean;
+    o.step = in.byte() & 1 ? in.number() : 1e-3;
+    if (in.byte() & 1) o.theta = in.number();
+    o.max_steps = 20000;
+    o.max_output_rows = 5000;
+    o.timeout = 2.0;
+    const double t_end = in.byte() & 1 ? in.number() : 0.05;
+    require_finite(simulate(model, t_end, o));
+}
+
 void run(Bytes& in) {
-    const std::size_t which = in.byte() % EngineLaws::size;
+    const std::uint8_t first = in.byte();
+    if (first == 0xFF) return run_field(in);
+    const std::size_t which = first % EngineLaws::size;
     std::size_t i = 0;
     for_each_type(EngineLaws{}, [&](auto tag) {
         if (i++ == which) run_rigs(law_from<typename decltype(tag)::type>(in), in);
