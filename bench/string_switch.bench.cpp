@@ -9,7 +9,7 @@
 // Wall time on this shared 2-core machine is noise; instruction counts are not. The figures in the report come
 // from callgrind, the whole program's count of one benchmark less that of a run of none (LTO inlines the loop, so
 // --toggle-collect finds no function to count):
-//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bench/string_switch \
+//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bench/string_switch (continued:)
 //       --benchmark_filter='dormand_prince/200/'      (and --benchmark_filter=none for the baseline)
 // divided by the `events` counter; the exponent is the slope of log(instructions per event) against log N.
 // Measured (issue 22, Dormand-Prince): 0.60 / 0.94 / 1.79 / 4.01 / 11.2 M instructions per switch at N = 20 ..

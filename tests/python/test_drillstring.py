@@ -435,11 +435,12 @@ def test_the_demos_field_string_map_has_the_trends_of_velocity_weakening(tmp_pat
 
     mine = Figure()
     axes = mine.subplots(1, 2)
-    assert ds.stick_slip_map_figure(m, ax=axes, cmap="cividis") is mine and mine.get_suptitle() == ""
+    assert ds.string_stick_slip_map_figure(m, ax=axes, cmap="cividis") is mine and mine.get_suptitle() == ""
     assert [a.collections[0].get_cmap().name for a in axes] == ["cividis", "cividis"]
     assert np.array_equal(axes[1].collections[0].get_array().reshape(m.stuck_fraction.T.shape), m.stuck_fraction.T)
     written = {p.name for p in part.write(tmp_path / "field_string")}
-    assert written == {"time_series.csv", "stick_slip_map.csv", "speeds.png", "stick_slip_map.png"}
+    assert written == {"time_series.csv", "stick_slip_map.csv", "speeds.png", "stick_slip_map.png",
+                       "well_b_captured.csv", "well_b_captured.png"}  # Well B through the captured treatment
     series = pd.read_csv(tmp_path / "field_string" / "time_series.csv")
     assert np.all(np.isfinite(series.to_numpy())) and series["stuck_contacts"].max() > 0
     text = "\n".join(part.report(quick=True))
