@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_EIGEN', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'Leuven', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopez2Dof', 'NavarroLopez4Dof', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'TorsionalString', 'aarsnes_shor_well_b', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -86,6 +86,7 @@ class Coulomb:
     key: typing.ClassVar[str] = 'coulomb'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = tuple()
+    state_units: typing.ClassVar[tuple] = tuple()
     stiff: typing.ClassVar[bool] = False
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex | None = None) -> None:
         ...
@@ -130,6 +131,7 @@ class Stribeck:
     key: typing.ClassVar[str] = 'stribeck'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = tuple()
+    state_units: typing.ClassVar[tuple] = tuple()
     stiff: typing.ClassVar[bool] = False
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex, stribeck_velocity: typing.SupportsFloat | typing.SupportsIndex, shape_exponent: typing.SupportsFloat | typing.SupportsIndex = 2, viscous_coefficient: typing.SupportsFloat | typing.SupportsIndex = 0, karnopp_band: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
         ...
@@ -195,6 +197,7 @@ class Dahl:
     key: typing.ClassVar[str] = 'dahl'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = ('dahl_deflection')
+    state_units: typing.ClassVar[tuple] = ('m')
     stiff: typing.ClassVar[bool] = False
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, tangential_stiffness: typing.SupportsFloat | typing.SupportsIndex, exponent: typing.SupportsFloat | typing.SupportsIndex = 1) -> None:
         ...
@@ -247,6 +250,7 @@ class LuGre:
     key: typing.ClassVar[str] = 'lugre'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = ('bristle_deflection')
+    state_units: typing.ClassVar[tuple] = ('m')
     stiff: typing.ClassVar[bool] = True
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex, stribeck_velocity: typing.SupportsFloat | typing.SupportsIndex, bristle_stiffness: typing.SupportsFloat | typing.SupportsIndex, bristle_damping: typing.SupportsFloat | typing.SupportsIndex, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
         ...
@@ -328,6 +332,7 @@ class ElastoPlastic:
     key: typing.ClassVar[str] = 'elasto_plastic'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = ('bristle_deflection')
+    state_units: typing.ClassVar[tuple] = ('m')
     stiff: typing.ClassVar[bool] = True
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex, stribeck_velocity: typing.SupportsFloat | typing.SupportsIndex, bristle_stiffness: typing.SupportsFloat | typing.SupportsIndex, bristle_damping: typing.SupportsFloat | typing.SupportsIndex, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 0, breakaway_fraction: typing.SupportsFloat | typing.SupportsIndex = 0.5) -> None:
         ...
@@ -443,6 +448,7 @@ class GeneralizedMaxwellSlip:
     key: typing.ClassVar[str] = 'gms'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = ('block_deflection_1', 'block_deflection_2', 'block_deflection_3', 'block_deflection_4')
+    state_units: typing.ClassVar[tuple] = ('m', 'm', 'm', 'm')
     stiff: typing.ClassVar[bool] = False
     def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex, stribeck_velocity: typing.SupportsFloat | typing.SupportsIndex, shape_exponent: typing.SupportsFloat | typing.SupportsIndex = 2, attraction: typing.SupportsFloat | typing.SupportsIndex = 4000, block_stiffness_1: typing.SupportsFloat | typing.SupportsIndex = 80000, block_stiffness_2: typing.SupportsFloat | typing.SupportsIndex = 40000, block_stiffness_3: typing.SupportsFloat | typing.SupportsIndex = 20000, block_stiffness_4: typing.SupportsFloat | typing.SupportsIndex = 10000, block_weight_1: typing.SupportsFloat | typing.SupportsIndex = 0.1, block_weight_2: typing.SupportsFloat | typing.SupportsIndex = 0.2, block_weight_3: typing.SupportsFloat | typing.SupportsIndex = 0.3, block_weight_4: typing.SupportsFloat | typing.SupportsIndex = 0.4, block_damping: typing.SupportsFloat | typing.SupportsIndex = 0, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
         ...
@@ -509,6 +515,110 @@ class GeneralizedMaxwellSlip:
     def mu_static(self) -> float:
         """
         mu_s [-]: Static coefficient: s(0) = mu_static F_N.
+        """
+    @property
+    def shape_exponent(self) -> float:
+        """
+        delta [-]: Shape of the Stribeck decay (2: Gaussian, 1: exponential).
+        """
+    @property
+    def stribeck_velocity(self) -> float:
+        """
+        v_s [m/s]: Stribeck velocity.
+        """
+    @property
+    def viscous_damping(self) -> float:
+        """
+        sigma_2 [N s/m]: Viscous friction.
+        """
+class Leuven:
+    """
+    Leuven friction (Swevers, Al-Bender, Ganseman & Prajogo 2000, IEEE TAC 45(4); state equation of
+    Lampaert, Swevers & Al-Bender 2002, IEEE TAC 47(4)):
+    
+        F = F_h(z) + sigma_1 dz/dt + sigma_2 v_r,
+        dz/dt = v_r (1 - sgn(r) |r|^n),   r = F_d(z) / (S(v_r) - F_b),
+        S(v) = sgn(v) F_N [mu + (mu_static - mu) exp(-|v/v_s|^delta)],
+    
+    with the hysteresis force F_h = F_b + F_d (non-local memory, Maxwell's rules): F_b its value at the last
+    turning point z_b, F_d(z) = 2 F_vc((z - z_b)/2) the transition curve from the virgin curve
+    F_vc(x) = k x / (1 + h k |x| / (mu_static F_N)). A reversal of v_r pushes a turning point; an inner loop
+    that closes is wiped out of the memory (up to memory_depth turning points, the oldest forgotten first).
+    Steady sliding gives the Stribeck curve F = S(v) + sigma_2 v; h = 0, n = 1 and memory_depth = 0 give LuGre.
+    States: presliding_displacement z [m] and the memory (turning_point_count, memory_truncated,
+    bottom_turning_force [N], turning_point_1..8 [m]), which changes only at reversals.
+    
+    Parameters
+    ----------
+    mu : float
+        Coulomb (high-speed) coefficient: s(v) -> mu F_N. mu [-], positive and finite.
+    mu_static : float
+        Static coefficient: s(0) = mu_static F_N. mu_s [-], >= mu and finite.
+    stribeck_velocity : float
+        Stribeck velocity. v_s [m/s], positive and finite.
+    presliding_stiffness : float
+        Initial slope of the hysteresis force's virgin curve (LuGre's sigma_0 when h = 0). k [N/m], positive and finite.
+    shape_exponent : float, optional
+        Shape of the Stribeck decay (2: Gaussian, 1: exponential). delta [-], positive and finite. Default: 2.
+    hysteresis_shape : float, optional
+        Curvature of the virgin curve F_vc(x) = k x / (1 + h k |x| / (mu_static F_N)); 0: linear. h [-], in [0, 1) (the virgin curve's asymptote mu_static F_N / h must lie above the static force). Default: 0.5.
+    attraction_exponent : float, optional
+        Exponent n of the state equation: how sharply presliding turns into sliding. n [-], in [1, 20] (below 1 the rate's slope is unbounded at every turning point). Default: 2.
+    memory_depth : float, optional
+        Turning points the hysteresis remembers (an integer; 0: no memory, F_b = 0). M [-], in [0, 8]. Default: 8.
+    micro_damping : float, optional
+        Micro-damping (on dz/dt). sigma_1 [N s/m], non-negative and finite. Default: 0.
+    viscous_damping : float, optional
+        Viscous friction. sigma_2 [N s/m], non-negative and finite. Default: 0.
+    
+    States: presliding_displacement, turning_point_count, memory_truncated, bottom_turning_force, turning_point_1, turning_point_2, turning_point_3, turning_point_4, turning_point_5, turning_point_6, turning_point_7, turning_point_8.
+    """
+    has_stick: typing.ClassVar[bool] = False
+    key: typing.ClassVar[str] = 'leuven'
+    parameters: typing.ClassVar[tuple]
+    state_names: typing.ClassVar[tuple] = ('presliding_displacement', 'turning_point_count', 'memory_truncated', 'bottom_turning_force', 'turning_point_1', 'turning_point_2', 'turning_point_3', 'turning_point_4', 'turning_point_5', 'turning_point_6', 'turning_point_7', 'turning_point_8')
+    state_units: typing.ClassVar[tuple] = ('m', '1', '1', 'N', 'm', 'm', 'm', 'm', 'm', 'm', 'm', 'm')
+    stiff: typing.ClassVar[bool] = True
+    def __init__(self, mu: typing.SupportsFloat | typing.SupportsIndex, mu_static: typing.SupportsFloat | typing.SupportsIndex, stribeck_velocity: typing.SupportsFloat | typing.SupportsIndex, presliding_stiffness: typing.SupportsFloat | typing.SupportsIndex, shape_exponent: typing.SupportsFloat | typing.SupportsIndex = 2, hysteresis_shape: typing.SupportsFloat | typing.SupportsIndex = 0.5, attraction_exponent: typing.SupportsFloat | typing.SupportsIndex = 2, memory_depth: typing.SupportsFloat | typing.SupportsIndex = 8, micro_damping: typing.SupportsFloat | typing.SupportsIndex = 0, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    @property
+    def attraction_exponent(self) -> float:
+        """
+        n [-]: Exponent n of the state equation: how sharply presliding turns into sliding.
+        """
+    @property
+    def hysteresis_shape(self) -> float:
+        """
+        h [-]: Curvature of the virgin curve F_vc(x) = k x / (1 + h k |x| / (mu_static F_N)); 0: linear.
+        """
+    @property
+    def memory_depth(self) -> float:
+        """
+        M [-]: Turning points the hysteresis remembers (an integer; 0: no memory, F_b = 0).
+        """
+    @property
+    def micro_damping(self) -> float:
+        """
+        sigma_1 [N s/m]: Micro-damping (on dz/dt).
+        """
+    @property
+    def mu(self) -> float:
+        """
+        mu [-]: Coulomb (high-speed) coefficient: s(v) -> mu F_N.
+        """
+    @property
+    def mu_static(self) -> float:
+        """
+        mu_s [-]: Static coefficient: s(0) = mu_static F_N.
+        """
+    @property
+    def presliding_stiffness(self) -> float:
+        """
+        k [N/m]: Initial slope of the hysteresis force's virgin curve (LuGre's sigma_0 when h = 0).
         """
     @property
     def shape_exponent(self) -> float:
@@ -661,12 +771,21 @@ class Method:
       cvode_bdf : SUNDIALS CVODE BDF + Newton, dense linear solver
     
       cvode_adams : SUNDIALS CVODE Adams-Moulton + fixed point
+    
+      rosenbrock : RODAS4 (linearly implicit, stiff; needs Eigen: HAS_EIGEN)
+    
+      moreau_jean : time-stepping models (TorsionalString): Moreau-Jean's theta-method, contacts captured; step, theta
+    
+      explicit_projection : time-stepping models: the field codes' explicit scheme (step below the element's wave transit)
     """
     __members__: typing.ClassVar[dict[str, Method]]
     automatic: typing.ClassVar[Method]
     cvode_adams: typing.ClassVar[Method]
     cvode_bdf: typing.ClassVar[Method]
     dormand_prince: typing.ClassVar[Method]
+    explicit_projection: typing.ClassVar[Method]
+    moreau_jean: typing.ClassVar[Method]
+    rosenbrock: typing.ClassVar[Method]
     @typing.overload
     def __eq__(self, other: Method) -> bool:
         ...
@@ -858,16 +977,34 @@ class SolverOptions:
     def output_times(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
         ...
     @property
+    def projection_band(self) -> float:
+        ...
+    @projection_band.setter
+    def projection_band(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def rtol(self) -> float:
         ...
     @rtol.setter
     def rtol(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def step(self) -> float:
+        ...
+    @step.setter
+    def step(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def stop_conditions(self) -> list[StopCondition]:
         ...
     @stop_conditions.setter
     def stop_conditions(self, arg0: collections.abc.Sequence[StopCondition]) -> None:
+        ...
+    @property
+    def theta(self) -> float:
+        ...
+    @theta.setter
+    def theta(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def timeout(self) -> float:
@@ -1033,6 +1170,456 @@ class HydraulicOscillatorParams:
     @property
     def wellbore_radius(self) -> float:
         ...
+class AxialVibrationRig:
+    """
+    The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
+    k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:
+    
+        m x'' = F_d - F_F - F_g,   F_d = k_d (v_d t - x),   v_r = x' - u0 w cos(w t).
+    
+    Defaults are the paper's Fig. 7(a) dry case (u0 = 5 mm, f = 17 Hz, v_d = 1 mm/s, F_N = 90 N; m = 0.2 kg,
+    k_d = 2e4 N/m chosen, the paper gives no drive stiffness). SI units.
+    
+    States: position x [m], velocity x' [m/s], the law's states, friction_impulse [N s], friction_work [J],
+    drive_work [J] (drive work = energy change + friction work).
+    
+    Parameters
+    ----------
+    friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw)
+    gravity : bool = False
+        Vertical rig: F_g = m g opposes the sliding.
+    initial_position : float, optional
+        x(0) [m]; default 0, or -m g / k_d with gravity (the spring carries the weight).
+    
+    Keywords
+    --------
+    mass : float = 0.2
+        m [kg], positive and finite: Specimen mass (0.2 kg: 170 x 30 x 5 mm of 45 steel).
+    drive_stiffness : float = 20000
+        k_d [N/m], positive and finite: Drive spring stiffness (not given by the paper; 2e4 N/m chosen).
+    sliding_velocity : float = 0.001
+        v_d [m/s], non-negative and finite: Drive (sliding) velocity.
+    amplitude : float = 0.005
+        u0 [m], non-negative and finite: Vibration amplitude of the surface.
+    frequency : float = 17
+        f [Hz], positive and finite: Vibration frequency (w = 2 pi f).
+    normal_force : float = 90
+        F_N [N], positive and finite: Normal force.
+    gravitational_acceleration : float = 9.81
+        g [m/s^2], non-negative and finite: Used when gravity is on (vertical rig).
+    initial_velocity : float = 0
+        x'(0) [m/s], finite: Initial velocity.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, friction: typing.Any, *, mass: float = 0.2, drive_stiffness: float = 20000, sliding_velocity: float = 0.001, amplitude: float = 0.005, frequency: float = 17, normal_force: float = 90, gravitational_acceleration: float = 9.81, initial_velocity: float = 0, gravity: bool = False, initial_position: float | None = None) -> None:
+        """
+        The friction law, then the rig's parameters by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    def drive_force(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], position: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        F_d = k_d (v_d t - x) [N] (eq 7).
+        """
+    def surface_velocity(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        Velocity of the vibrating surface u0 w cos(w t) [m/s].
+        """
+    @property
+    def amplitude(self) -> float:
+        """
+        u0 [m]: Vibration amplitude of the surface.
+        """
+    @property
+    def drive_stiffness(self) -> float:
+        """
+        k_d [N/m]: Drive spring stiffness (not given by the paper; 2e4 N/m chosen).
+        """
+    @property
+    def frequency(self) -> float:
+        """
+        f [Hz]: Vibration frequency (w = 2 pi f).
+        """
+    @property
+    def friction(self) -> typing.Any:
+        ...
+    @property
+    def gravitational_acceleration(self) -> float:
+        """
+        g [m/s^2]: Used when gravity is on (vertical rig).
+        """
+    @property
+    def gravity(self) -> bool:
+        ...
+    @property
+    def initial_position(self) -> float | None:
+        ...
+    @property
+    def initial_velocity(self) -> float:
+        """
+        x'(0) [m/s]: Initial velocity.
+        """
+    @property
+    def mass(self) -> float:
+        """
+        m [kg]: Specimen mass (0.2 kg: 170 x 30 x 5 mm of 45 steel).
+        """
+    @property
+    def normal_force(self) -> float:
+        """
+        F_N [N]: Normal force.
+        """
+    @property
+    def period(self) -> float:
+        """
+        Vibration period 1/f [s].
+        """
+    @property
+    def sliding_velocity(self) -> float:
+        """
+        v_d [m/s]: Drive (sliding) velocity.
+        """
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def vibration_velocity_amplitude(self) -> float:
+        """
+        v_a = 2 pi f u0 [m/s] (eq 16).
+        """
+class KinematicRig:
+    """
+    A friction law driven by a prescribed relative velocity v_r(t) [m/s] and normal force N(t) [N]: no mass, so
+    set-valued laws (Coulomb, Stribeck) give their slip force on the branch sgn(v_r); reversals of v_r are located
+    as events. This is the model that identification from measured signals fits (frictionsim.fit).
+    
+    States: the law's state (dahl_deflection / bristle_deflection [m]), friction_impulse int F dt [N s] and
+    friction_work int F v_r dt [J].
+    
+    Parameters
+    ----------
+    friction : a friction law (any class of fs.FRICTION_LAWS, a Stribeck law without Karnopp band, fs.CallableLaw) or
+        fs.HystereticFriction (paper 001's eq 6: relative_velocity is then the disc speed w [rad/s], its derivative
+        dw/dt picks the branch (a callable's by central difference), friction_force is the torque [N m]; modes 0
+        stick band, +-1 accelerating, +-2 decelerating)
+    relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewise linear)
+    normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
+    initial_state : sequence of float, optional
+        The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
+    """
+    @staticmethod
+    def harmonic(friction: typing.Any, *, sliding_velocity: typing.SupportsFloat | typing.SupportsIndex, velocity_amplitude: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, normal_force: typing.Any, initial_state: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None = None) -> KinematicRig:
+        """
+        The paper's relative velocity v_r = v_d - v_a cos(2 pi f t) (eqs 8-9, 16), v_a [m/s], f [Hz].
+        """
+    def __init__(self, friction: typing.Any, *, relative_velocity: typing.Any, normal_force: typing.Any, initial_state: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None = None) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    @property
+    def frequency(self) -> float | None:
+        """
+        f [Hz] of a harmonic relative velocity, else None.
+        """
+    @property
+    def friction(self) -> typing.Any:
+        ...
+    @property
+    def initial_state(self) -> list[float] | None:
+        ...
+    @property
+    def normal_force(self) -> typing.Any:
+        ...
+    @property
+    def period(self) -> float | None:
+        """
+        Period 1/f [s] of a harmonic relative velocity, else None.
+        """
+    @property
+    def relative_velocity(self) -> typing.Any:
+        ...
+    @property
+    def state_names(self) -> list[str]:
+        ...
+class HystereticFriction:
+    """
+    Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]
+    with acceleration al [rad/s^2]:
+    
+        T = a w                                                      |w| <= w_s  (stick band)
+        T = p00 + p10 w + p01 al + p20 w^2 + p11 w al + p02 al^2       |w| >  w_s, al > 0  (accelerating)
+        T = n00 + n10 w + n01 al + n20 w^2 + n11 w al + n02 al^2       |w| >  w_s, al < 0  (decelerating)
+    
+    For w < -w_s the law is extended oddly, T(w, al) = -T(-w, -al). The coefficients hold at
+    reference_normal_force; a rig's normal force N scales T by N / reference_normal_force. Only the torsional rig
+    runs it: the torque depends on the acceleration, and the rig solves J al = S - T(w, al) exactly on each branch.
+    
+    Parameters
+    ----------
+    stick_slope : float
+        a [N m s/rad], > 0; the break-away torque is a w_s.
+    accelerating, decelerating : sequence of 6 floats
+        (p00, p10, p01, p20, p11, p02) and (n00, ..., n02) in SI units (N m, N m s/rad, kg m^2, ...).
+    stick_speed : float
+        w_s [rad/s], > 0 (1e-3 in the paper).
+    reference_normal_force : float
+        N_ref [N], > 0 (35 N in the paper).
+    branch_gap : {"hold", "error"}
+        Where neither branch is consistent (the shaft torque between the decelerating level N0(w) and the
+        accelerating level P0(w) at al = 0; eq 6 has no case for it): "hold" keeps al = 0 with the set-valued
+        torque in [N0, P0] (Filippov) until the shaft torque leaves the gap; "error" stops the run with a
+        SimulationError that names the time, speed and torques.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, stick_slope: typing.SupportsFloat | typing.SupportsIndex, accelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], decelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], stick_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, reference_normal_force: typing.SupportsFloat | typing.SupportsIndex = 35.0, branch_gap: str = 'hold') -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _branch_torque(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.bool], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        ...
+    def _torque(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        ...
+    def branch_torque(self, accelerating: typing.Any, w: typing.Any, al: typing.Any, normal_force: typing.Any = None) -> typing.Any:
+        """
+        One slip branch of eq 6 [N m], whatever the signs (normal_force as in torque()).
+        """
+    def torque(self, w: typing.Any, al: typing.Any, normal_force: typing.Any = None) -> typing.Any:
+        """
+        Eq 6 [N m] at speed w [rad/s] and acceleration al [rad/s^2], the branch picked by the sign of w al (al = 0 counts as decelerating), at normal_force [N] (default: the reference normal force, where the coefficients hold); arrays broadcast.
+        """
+    @property
+    def accelerating(self) -> typing.Annotated[list[float], "FixedSize(6)"]:
+        """
+        (p00, p10, p01, p20, p11, p02)
+        """
+    @property
+    def branch_gap(self) -> str:
+        ...
+    @property
+    def decelerating(self) -> typing.Annotated[list[float], "FixedSize(6)"]:
+        """
+        (n00, n10, n01, n20, n11, n02)
+        """
+    @property
+    def reference_normal_force(self) -> float:
+        """
+        N_ref [N]: The normal force the coefficients were fitted at (the torque scales with N / N_ref).
+        """
+    @property
+    def stick_slope(self) -> float:
+        """
+        a [N m s/rad]: Stick band T = a w (break-away torque a w_s).
+        """
+    @property
+    def stick_speed(self) -> float:
+        """
+        w_s [rad/s]: Half-width of the stick band (eq 6).
+        """
+class TorsionalRig:
+    """
+    The torsional drill-string rig of paper 001 (eqs 1-5): disc D2 on a shaft (k2, d2), driven through a gear
+    eta:1 by a DC motor (L, R, K_T, K_E, T_f, C_m, J_m) under PI speed control of the load-side speed w3, with
+    friction torque T_f2 on the disc:
+    
+        J2 w2'        = S - T_f2,        S = k2 (th3 - th2) + d2 (w3 - w2)
+        eta^2 J_m w3' = eta K_T i - eta^2 C_m w3 - eta T_f sgn(w3) - S        (motor friction sticks at w3 = 0)
+        L i'          = V - R i - eta K_E w3,    V = k_p (w_ref - w3) + k_i int (w_ref - w3) dt
+    
+    Defaults: Tables 1-2 at the Fig. 7 operating point (w_ref = 5.76 rad/s, N2 = 35 N). J_m = J3 / eta^2 (Table 1's
+    J3 read as referred to the load side), k_i = 3.5 (Table 2 misprints its label). SI units; all keywords optional.
+    
+    friction : a friction law (any class of fs.FRICTION_LAWS) or HystereticFriction
+        The engine's laws act at contact_radius r with normal force N2 (v_r = r w2, T_f2 = r F); the
+        HystereticFriction of eq 6 acts on w2 and dw2/dt directly, scaled by N2 / its reference normal force.
+    
+    States: disc_angle th2 [rad], disc_speed w2 [rad/s], shaft_twist th3 - th2 [rad], drive_speed w3 [rad/s],
+    current i [A], speed_error_integral [rad], the law's states, and the energy integrals [J] motor_work
+    (int eta K_T i w3 dt), friction_work (int T_f2 w2 dt), damping_work, electrical_work (int V i dt), ohmic_work:
+    motor_work = stored mechanical energy change + friction_work + damping_work. The Result's friction_force is
+    T_f2 [N m]; its mode is the disc's (minus 16 while the motor sticks, minus 32 while it turns backwards).
+    
+    Keywords
+    --------
+    disc_inertia : float = 0.0149
+        J2 [kg m^2], positive and finite: Disc inertia (Table 1).
+    shaft_stiffness : float = 0.3659
+        k2 [N m/rad], positive and finite: Shaft stiffness (Table 1).
+    shaft_damping : float = 0.0167
+        d2 [N m s/rad], non-negative and finite: Shaft damping (Table 1).
+    motor_inertia : float = 0.0003703125
+        J_m [kg m^2], positive and finite: Rotor inertia at the motor shaft (Table 1's J3 / eta^2).
+    gear_ratio : float = 8
+        eta [-], positive and finite: Gear ratio (eq 4): motor speed = eta w3.
+    inductance : float = 0.0008437
+        L [H], positive and finite: Armature inductance (Table 2).
+    resistance : float = 0.33
+        R [Ohm], positive and finite: Armature resistance (Table 2).
+    torque_constant : float = 0.126
+        K_T [N m/A], positive and finite: Motor torque constant (Table 2).
+    back_emf_constant : float = 0.0602
+        K_E [V s/rad], non-negative and finite: Back-emf constant (Table 2).
+    motor_friction_torque : float = 0.1196
+        T_f [N m], non-negative and finite: Motor friction torque at the motor shaft (Table 2).
+    motor_viscous_coefficient : float = 0.0001784
+        C_m [N m s/rad], non-negative and finite: Motor viscous friction (Table 2).
+    proportional_gain : float = 2.8
+        k_p [V s/rad], non-negative and finite: PI proportional gain (Table 2).
+    integral_gain : float = 3.5
+        k_i [V/rad], non-negative and finite: PI integral gain (Table 2, printed as "DC-motor moment of inertia").
+    reference_speed : float = 5.76
+        w_ref [rad/s], finite: Reference speed, load side (eq 3).
+    normal_force : float = 35
+        N2 [N], positive and finite: Normal force on the disc.
+    contact_radius : float = 0.1
+        r [m], positive and finite: Where the engine's laws act: v_r = r w2, T = r F.
+    initial_disc_speed : float = 0
+        w2(0) [rad/s], finite: Initial disc speed.
+    initial_drive_speed : float = 0
+        w3(0) [rad/s], finite: Initial drive speed (load side).
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, friction: typing.Any, *, disc_inertia: float = 0.0149, shaft_stiffness: float = 0.3659, shaft_damping: float = 0.0167, motor_inertia: float = 0.0003703125, gear_ratio: float = 8, inductance: float = 0.0008437, resistance: float = 0.33, torque_constant: float = 0.126, back_emf_constant: float = 0.0602, motor_friction_torque: float = 0.1196, motor_viscous_coefficient: float = 0.0001784, proportional_gain: float = 2.8, integral_gain: float = 3.5, reference_speed: float = 5.76, normal_force: float = 35, contact_radius: float = 0.1, initial_disc_speed: float = 0, initial_drive_speed: float = 0) -> None:
+        """
+        The friction law, then the rig's parameters by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    def disc_acceleration(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], mode: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        dw2/dt [rad/s^2] for each row in its recorded mode.
+        """
+    def shaft_torque(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        S = k2 (th3 - th2) + d2 (w3 - w2) [N m] for each row of a (rows, states) array.
+        """
+    def stored_mechanical_energy(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        J2 w2^2 / 2 + eta^2 J_m w3^2 / 2 + k2 (th3 - th2)^2 / 2 [J] for each row.
+        """
+    def voltage(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        PI output V [V] (eq 3) for each row.
+        """
+    @property
+    def back_emf_constant(self) -> float:
+        """
+        K_E [V s/rad]: Back-emf constant (Table 2).
+        """
+    @property
+    def contact_radius(self) -> float:
+        """
+        r [m]: Where the engine's laws act: v_r = r w2, T = r F.
+        """
+    @property
+    def disc_inertia(self) -> float:
+        """
+        J2 [kg m^2]: Disc inertia (Table 1).
+        """
+    @property
+    def friction(self) -> typing.Any:
+        ...
+    @property
+    def gear_ratio(self) -> float:
+        """
+        eta [-]: Gear ratio (eq 4): motor speed = eta w3.
+        """
+    @property
+    def inductance(self) -> float:
+        """
+        L [H]: Armature inductance (Table 2).
+        """
+    @property
+    def initial_disc_speed(self) -> float:
+        """
+        w2(0) [rad/s]: Initial disc speed.
+        """
+    @property
+    def initial_drive_speed(self) -> float:
+        """
+        w3(0) [rad/s]: Initial drive speed (load side).
+        """
+    @property
+    def integral_gain(self) -> float:
+        """
+        k_i [V/rad]: PI integral gain (Table 2, printed as "DC-motor moment of inertia").
+        """
+    @property
+    def motor_friction_torque(self) -> float:
+        """
+        T_f [N m]: Motor friction torque at the motor shaft (Table 2).
+        """
+    @property
+    def motor_inertia(self) -> float:
+        """
+        J_m [kg m^2]: Rotor inertia at the motor shaft (Table 1's J3 / eta^2).
+        """
+    @property
+    def motor_viscous_coefficient(self) -> float:
+        """
+        C_m [N m s/rad]: Motor viscous friction (Table 2).
+        """
+    @property
+    def natural_frequency(self) -> float:
+        """
+        sqrt(k2 / J2) / 2 pi [Hz]: the disc on a rigidly held shaft end.
+        """
+    @property
+    def normal_force(self) -> float:
+        """
+        N2 [N]: Normal force on the disc.
+        """
+    @property
+    def period(self) -> None:
+        """
+        None: the rig has no imposed period (its stick-slip period is an outcome).
+        """
+    @property
+    def proportional_gain(self) -> float:
+        """
+        k_p [V s/rad]: PI proportional gain (Table 2).
+        """
+    @property
+    def reference_speed(self) -> float:
+        """
+        w_ref [rad/s]: Reference speed, load side (eq 3).
+        """
+    @property
+    def resistance(self) -> float:
+        """
+        R [Ohm]: Armature resistance (Table 2).
+        """
+    @property
+    def shaft_damping(self) -> float:
+        """
+        d2 [N m s/rad]: Shaft damping (Table 1).
+        """
+    @property
+    def shaft_stiffness(self) -> float:
+        """
+        k2 [N m/rad]: Shaft stiffness (Table 1).
+        """
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def torque_constant(self) -> float:
+        """
+        K_T [N m/A]: Motor torque constant (Table 2).
+        """
 class PipeSection:
     """
     One section of a drill string: a steel tube (drill pipe, heavy-weight pipe, collars). All keywords optional;
@@ -1184,6 +1771,7 @@ class NavarroLopezBit:
     key: typing.ClassVar[str] = 'navarro_lopez_bit'
     parameters: typing.ClassVar[tuple]
     state_names: typing.ClassVar[tuple] = tuple()
+    state_units: typing.ClassVar[tuple] = tuple()
     stiff: typing.ClassVar[bool] = False
     def __init__(self, bit_radius: typing.SupportsFloat | typing.SupportsIndex = 0.155575, coulomb_coefficient: typing.SupportsFloat | typing.SupportsIndex = 0.5, static_coefficient: typing.SupportsFloat | typing.SupportsIndex = 0.8, weakening_rate: typing.SupportsFloat | typing.SupportsIndex = 0.9, velocity_scale: typing.SupportsFloat | typing.SupportsIndex = 1, viscous_damping: typing.SupportsFloat | typing.SupportsIndex = 50, stick_band: typing.SupportsFloat | typing.SupportsIndex = 0) -> None:
         ...
@@ -1245,7 +1833,10 @@ class DetournayBit:
     
         W = zeta eps a d + a l sigma,   T = c eps a^2 d + c gamma mu a (a l sigma)
     
-    c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half. As a StringRig's bit
+    c = torque_constant: 1/2 in Detournay & Defourny's convention, 1 in codes that drop the half; codes also differ
+    in where the half sits (some put it on the cutting term only and absorb the wear flats' into their gamma).
+    DetournayBit.CONVENTIONS names the forms (cutting constant, wear-flat constant, formula), from_convention builds the
+    bit of a code from that code's parameters, and convention names this bit's. As a StringRig's bit
     under weight_on_bit W: d = depth_at_weight(W), T turning forwards whatever the speed, the stuck bit held within
     |T| (turning backwards only the wear flats rub). The delayed depth of cut of Richard-Germay-Detournay (axial-
     torsional coupling through a state-dependent delay) is not modelled. Defaults: an illustrative 8.5" PDC bit.
@@ -1269,7 +1860,18 @@ class DetournayBit:
     torque_constant : float = 0.5
         c [-], positive and finite (1/2 in Detournay & Defourny's convention, 1 in others): Constant of the torque: T = c (eps a^2 d + gamma mu a W_f).
     """
+    CONVENTIONS: typing.ClassVar[dict] = {'detournay_defourny': (0.5, 0.5, 'T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007)'), 'unit': (1.0, 1.0, 'T = eps a^2 d + gamma mu a W_f (codes that drop the half)'), 'half_cutting': (0.5, 1.0, "T = eps a^2 d / 2 + gamma mu a W_f (the wear flats' half absorbed into gamma: here c = 1/2, gamma = 2 gamma')")}
     parameters: typing.ClassVar[tuple]
+    @staticmethod
+    def depth_of_cut(rate_of_penetration: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], angular_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        d = 2 pi V / Omega [m per revolution] from the rate of penetration V [m/s] and the angular speed Omega [rad/s] (> 0: the bit cuts only while it turns forwards); arrays broadcast.
+        """
+    @staticmethod
+    def from_convention(convention: str, **kwargs) -> DetournayBit:
+        """
+        The bit of a code that writes its torque in `convention` (a key of DetournayBit.CONVENTIONS), with that code's parameters by keyword (contact_orientation is the code's gamma): T = c_c eps a^2 d + c_f gamma' mu a W_f becomes this law's T = c eps a^2 d + c gamma mu a W_f with c = c_c, gamma = gamma' c_f / c_c. The weight on bit has no such constant.
+        """
     def __init__(self, *, bit_radius: float = 0.108, intrinsic_specific_energy: float = 110000000, cutting_force_ratio: float = 0.6, contact_strength: float = 60000000, wearflat_length: float = 0.0012, friction_coefficient: float = 0.6, contact_orientation: float = 1, torque_constant: float = 0.5) -> None:
         """
         The bit's parameters by keyword.
@@ -1314,6 +1916,11 @@ class DetournayBit:
     def contact_torque(self) -> float:
         """
         T_f = c gamma mu a W_f [N m]: the wear flats' torque.
+        """
+    @property
+    def convention(self) -> typing.Any:
+        """
+        The name of the convention whose torque this bit writes with its own gamma (torque_constant 1/2: 'detournay_defourny', 1: 'unit'), or None for another constant.
         """
     @property
     def cutting_force_ratio(self) -> float:
@@ -1634,148 +2241,62 @@ class StringRig:
         """
         W [N], or None off bottom.
         """
-class HystereticFriction:
+class NavarroLopez2Dof:
     """
-    Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]
-    with acceleration al [rad/s^2]:
+    The 2-DOF drill string of Navarro-Lopez & Suarez (2004), reused by Navarro-Lopez & Cortes (2007): rotary table and bit.
     
-        T = a w                                                      |w| <= w_s  (stick band)
-        T = p00 + p10 w + p01 al + p20 w^2 + p11 w al + p02 al^2       |w| >  w_s, al > 0  (accelerating)
-        T = n00 + n10 w + n01 al + n20 w^2 + n11 w al + n02 al^2       |w| >  w_s, al < 0  (decelerating)
+    A constant motor torque u drives the rotary table (viscous loss c_r); springs k and dampers d join the inertias;
+    the bit (last inertia) carries the velocity-weakening friction of NavarroLopezBit with stick, under weight on bit W:
     
-    For w < -w_s the law is extended oddly, T(w, al) = -T(-w, -al). The coefficients hold at
-    reference_normal_force; a rig's normal force N scales T by N / reference_normal_force. Only the torsional rig
-    runs it: the torque depends on the acceleration, and the rig solves J al = S - T(w, al) exactly on each branch.
+        J_i w_i' = [i = 0] (u - c_r w_0) + S_{i-1} - S_i - T_i,   S_i = k_i (phi_i - phi_{i+1}) + d_i (w_i - w_{i+1})
+        T_b = c_b w_b + R_b W mu_b(w_b) sign(w_b),  mu_b = mu_cb + (mu_sb - mu_cb) exp(-gamma_b |w_b| / v_f)   (slip)
+        |T_b| <= R_b W mu_sb                                                                           (stick)
     
-    Parameters
-    ----------
-    stick_slope : float
-        a [N m s/rad], > 0; the break-away torque is a w_s.
-    accelerating, decelerating : sequence of 6 floats
-        (p00, p10, p01, p20, p11, p02) and (n00, ..., n02) in SI units (N m, N m s/rad, kg m^2, ...).
-    stick_speed : float
-        w_s [rad/s], > 0 (1e-3 in the paper).
-    reference_normal_force : float
-        N_ref [N], > 0 (35 N in the paper).
-    branch_gap : {"hold", "error"}
-        Where neither branch is consistent (the shaft torque between the decelerating level N0(w) and the
-        accelerating level P0(w) at al = 0; eq 6 has no case for it): "hold" keeps al = 0 with the set-valued
-        torque in [N0, P0] (Filippov) until the shaft torque leaves the gap; "error" stops the run with a
-        SimulationError that names the time, speed and torques.
-    """
-    parameters: typing.ClassVar[tuple]
-    def __init__(self, stick_slope: typing.SupportsFloat | typing.SupportsIndex, accelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], decelerating: typing.Annotated[collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], "FixedSize(6)"], stick_speed: typing.SupportsFloat | typing.SupportsIndex = 0.001, reference_normal_force: typing.SupportsFloat | typing.SupportsIndex = 35.0, branch_gap: str = 'hold') -> None:
-        ...
-    def __reduce__(self) -> tuple:
-        ...
-    def __repr__(self) -> typing.Any:
-        ...
-    def _branch_torque(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.bool], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-        ...
-    def _torque(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-        ...
-    def branch_torque(self, accelerating: typing.Any, w: typing.Any, al: typing.Any, normal_force: typing.Any = None) -> typing.Any:
-        """
-        One slip branch of eq 6 [N m], whatever the signs (normal_force as in torque()).
-        """
-    def torque(self, w: typing.Any, al: typing.Any, normal_force: typing.Any = None) -> typing.Any:
-        """
-        Eq 6 [N m] at speed w [rad/s] and acceleration al [rad/s^2], the branch picked by the sign of w al (al = 0 counts as decelerating), at normal_force [N] (default: the reference normal force, where the coefficients hold); arrays broadcast.
-        """
-    @property
-    def accelerating(self) -> typing.Annotated[list[float], "FixedSize(6)"]:
-        """
-        (p00, p10, p01, p20, p11, p02)
-        """
-    @property
-    def branch_gap(self) -> str:
-        ...
-    @property
-    def decelerating(self) -> typing.Annotated[list[float], "FixedSize(6)"]:
-        """
-        (n00, n10, n01, n20, n11, n02)
-        """
-    @property
-    def reference_normal_force(self) -> float:
-        """
-        N_ref [N]: The normal force the coefficients were fitted at (the torque scales with N / N_ref).
-        """
-    @property
-    def stick_slope(self) -> float:
-        """
-        a [N m s/rad]: Stick band T = a w (break-away torque a w_s).
-        """
-    @property
-    def stick_speed(self) -> float:
-        """
-        w_s [rad/s]: Half-width of the stick band (eq 6).
-        """
-class TorsionalRig:
-    """
-    The torsional drill-string rig of paper 001 (eqs 1-5): disc D2 on a shaft (k2, d2), driven through a gear
-    eta:1 by a DC motor (L, R, K_T, K_E, T_f, C_m, J_m) under PI speed control of the load-side speed w3, with
-    friction torque T_f2 on the disc:
+    Steady states (closed forms): while the bit turns every inertia runs at the root w of steady_balance(w) = 0,
+    u - (c_r + c_b) w - R_b W mu_b(w) = 0; at rest the bit holds while W >= stuck_weight_threshold = u / (R_b mu_sb).
+    Switches are located as events (exact stick, or a Karnopp band D_v). States: each inertia's speed [rad/s], each
+    spring's twist [rad], and motor_work = stored energy change + damping_work + friction_work [J]. The Result's
+    friction_force is the bit's torque T_b [N m]; the mode is 0 while everything turns forwards, 1 while the bit sticks.
     
-        J2 w2'        = S - T_f2,        S = k2 (th3 - th2) + d2 (w3 - w2)
-        eta^2 J_m w3' = eta K_T i - eta^2 C_m w3 - eta T_f sgn(w3) - S        (motor friction sticks at w3 = 0)
-        L i'          = V - R i - eta K_E w3,    V = k_p (w_ref - w3) + k_i int (w_ref - w3) dt
-    
-    Defaults: Tables 1-2 at the Fig. 7 operating point (w_ref = 5.76 rad/s, N2 = 35 N). J_m = J3 / eta^2 (Table 1's
-    J3 read as referred to the load side), k_i = 3.5 (Table 2 misprints its label). SI units; all keywords optional.
-    
-    friction : a friction law (any class of fs.FRICTION_LAWS) or HystereticFriction
-        The engine's laws act at contact_radius r with normal force N2 (v_r = r w2, T_f2 = r F); the
-        HystereticFriction of eq 6 acts on w2 and dw2/dt directly, scaled by N2 / its reference normal force.
-    
-    States: disc_angle th2 [rad], disc_speed w2 [rad/s], shaft_twist th3 - th2 [rad], drive_speed w3 [rad/s],
-    current i [A], speed_error_integral [rad], the law's states, and the energy integrals [J] motor_work
-    (int eta K_T i w3 dt), friction_work (int T_f2 w2 dt), damping_work, electrical_work (int V i dt), ohmic_work:
-    motor_work = stored mechanical energy change + friction_work + damping_work. The Result's friction_force is
-    T_f2 [N m]; its mode is the disc's (minus 16 while the motor sticks, minus 32 while it turns backwards).
+    Defaults: the papers' parameter set at u = 6 kN m, W = 30 kN (illustrative).
     
     Keywords
     --------
-    disc_inertia : float = 0.0149
-        J2 [kg m^2], positive and finite: Disc inertia (Table 1).
-    shaft_stiffness : float = 0.3659
-        k2 [N m/rad], positive and finite: Shaft stiffness (Table 1).
-    shaft_damping : float = 0.0167
-        d2 [N m s/rad], non-negative and finite: Shaft damping (Table 1).
-    motor_inertia : float = 0.0003703125
-        J_m [kg m^2], positive and finite: Rotor inertia at the motor shaft (Table 1's J3 / eta^2).
-    gear_ratio : float = 8
-        eta [-], positive and finite: Gear ratio (eq 4): motor speed = eta w3.
-    inductance : float = 0.0008437
-        L [H], positive and finite: Armature inductance (Table 2).
-    resistance : float = 0.33
-        R [Ohm], positive and finite: Armature resistance (Table 2).
-    torque_constant : float = 0.126
-        K_T [N m/A], positive and finite: Motor torque constant (Table 2).
-    back_emf_constant : float = 0.0602
-        K_E [V s/rad], non-negative and finite: Back-emf constant (Table 2).
-    motor_friction_torque : float = 0.1196
-        T_f [N m], non-negative and finite: Motor friction torque at the motor shaft (Table 2).
-    motor_viscous_coefficient : float = 0.0001784
-        C_m [N m s/rad], non-negative and finite: Motor viscous friction (Table 2).
-    proportional_gain : float = 2.8
-        k_p [V s/rad], non-negative and finite: PI proportional gain (Table 2).
-    integral_gain : float = 3.5
-        k_i [V/rad], non-negative and finite: PI integral gain (Table 2, printed as "DC-motor moment of inertia").
-    reference_speed : float = 5.76
-        w_ref [rad/s], finite: Reference speed, load side (eq 3).
-    normal_force : float = 35
-        N2 [N], positive and finite: Normal force on the disc.
-    contact_radius : float = 0.1
-        r [m], positive and finite: Where the engine's laws act: v_r = r w2, T = r F.
-    initial_disc_speed : float = 0
-        w2(0) [rad/s], finite: Initial disc speed.
-    initial_drive_speed : float = 0
-        w3(0) [rad/s], finite: Initial drive speed (load side).
+    table_inertia : float = 2122
+        J_r [kg m^2], positive and finite: Rotary table inertia.
+    bit_inertia : float = 374
+        J_b [kg m^2], positive and finite: Bit (and BHA) inertia.
+    string_stiffness : float = 861.2
+        k_t [N m/rad], positive and finite: Torsional stiffness of the string.
+    string_damping : float = 172.3
+        c_t [N m s/rad], non-negative and finite: Structural damping of the string.
+    table_damping : float = 425
+        c_r [N m s/rad], non-negative and finite: Viscous loss at the rotary table.
+    bit_damping : float = 50
+        c_b [N m s/rad], non-negative and finite: Viscous torque coefficient at the bit.
+    bit_radius : float = 0.155575
+        R_b [m], positive and finite: Bit radius.
+    coulomb_coefficient : float = 0.5
+        mu_cb [-], positive and finite: Bit friction at high speed.
+    static_coefficient : float = 0.8
+        mu_sb [-], >= coulomb_coefficient and finite: Static bit friction, >= mu_cb.
+    weakening_rate : float = 0.9
+        gamma_b [-], non-negative and finite: Rate of the velocity weakening.
+    velocity_scale : float = 1
+        v_f [rad/s], positive and finite: Bit speed scale of the weakening.
+    stick_band : float = 0
+        D_v [rad/s], non-negative and finite: Karnopp band (0: exact stick).
+    motor_torque : float = 6000
+        u [N m], finite: Constant motor torque on the rotary table.
+    weight_on_bit : float = 30000
+        W [N], non-negative and finite: Weight on bit.
+    initial_speed : float = 0
+        w(0) [rad/s], finite: Speed of every inertia at t = 0 (springs untwisted).
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, friction: typing.Any, *, disc_inertia: float = 0.0149, shaft_stiffness: float = 0.3659, shaft_damping: float = 0.0167, motor_inertia: float = 0.0003703125, gear_ratio: float = 8, inductance: float = 0.0008437, resistance: float = 0.33, torque_constant: float = 0.126, back_emf_constant: float = 0.0602, motor_friction_torque: float = 0.1196, motor_viscous_coefficient: float = 0.0001784, proportional_gain: float = 2.8, integral_gain: float = 3.5, reference_speed: float = 5.76, normal_force: float = 35, contact_radius: float = 0.1, initial_disc_speed: float = 0, initial_drive_speed: float = 0) -> None:
+    def __init__(self, *, table_inertia: float = 2122, bit_inertia: float = 374, string_stiffness: float = 861.2, string_damping: float = 172.3, table_damping: float = 425, bit_damping: float = 50, bit_radius: float = 0.155575, coulomb_coefficient: float = 0.5, static_coefficient: float = 0.8, weakening_rate: float = 0.9, velocity_scale: float = 1, stick_band: float = 0, motor_torque: float = 6000, weight_on_bit: float = 30000, initial_speed: float = 0) -> None:
         """
-        The friction law, then the rig's parameters by keyword (see the class docstring).
+        The rig's parameters by keyword (see the class docstring).
         """
     def __reduce__(self) -> tuple:
         ...
@@ -1783,306 +2304,587 @@ class TorsionalRig:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
-    def disc_acceleration(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], mode: typing.Any) -> numpy.typing.NDArray[numpy.float64]:
+    def steady_balance(self, speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
-        dw2/dt [rad/s^2] for each row in its recorded mode.
-        """
-    def shaft_torque(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        S = k2 (th3 - th2) + d2 (w3 - w2) [N m] for each row of a (rows, states) array.
-        """
-    def stored_mechanical_energy(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        J2 w2^2 / 2 + eta^2 J_m w3^2 / 2 + k2 (th3 - th2)^2 / 2 [J] for each row.
-        """
-    def voltage(self, states: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
-        """
-        PI output V [V] (eq 3) for each row.
+        u - (c_r + c_b) w - R_b W mu_b(w) - sum T_p [N m] at a common speed w > 0 [rad/s] (arrays broadcast): the sum of all equations with every inertia at w; its root is the steady speed while the bit turns.
         """
     @property
-    def back_emf_constant(self) -> float:
+    def bit(self) -> NavarroLopezBit:
         """
-        K_E [V s/rad]: Back-emf constant (Table 2).
-        """
-    @property
-    def contact_radius(self) -> float:
-        """
-        r [m]: Where the engine's laws act: v_r = r w2, T = r F.
+        The bit's law (NavarroLopezBit) built from this table's bit fields.
         """
     @property
-    def disc_inertia(self) -> float:
+    def bit_damping(self) -> float:
         """
-        J2 [kg m^2]: Disc inertia (Table 1).
-        """
-    @property
-    def friction(self) -> typing.Any:
-        ...
-    @property
-    def gear_ratio(self) -> float:
-        """
-        eta [-]: Gear ratio (eq 4): motor speed = eta w3.
+        c_b [N m s/rad]: Viscous torque coefficient at the bit.
         """
     @property
-    def inductance(self) -> float:
+    def bit_inertia(self) -> float:
         """
-        L [H]: Armature inductance (Table 2).
-        """
-    @property
-    def initial_disc_speed(self) -> float:
-        """
-        w2(0) [rad/s]: Initial disc speed.
+        J_b [kg m^2]: Bit (and BHA) inertia.
         """
     @property
-    def initial_drive_speed(self) -> float:
+    def bit_radius(self) -> float:
         """
-        w3(0) [rad/s]: Initial drive speed (load side).
-        """
-    @property
-    def integral_gain(self) -> float:
-        """
-        k_i [V/rad]: PI integral gain (Table 2, printed as "DC-motor moment of inertia").
+        R_b [m]: Bit radius.
         """
     @property
-    def motor_friction_torque(self) -> float:
+    def coulomb_coefficient(self) -> float:
         """
-        T_f [N m]: Motor friction torque at the motor shaft (Table 2).
-        """
-    @property
-    def motor_inertia(self) -> float:
-        """
-        J_m [kg m^2]: Rotor inertia at the motor shaft (Table 1's J3 / eta^2).
+        mu_cb [-]: Bit friction at high speed.
         """
     @property
-    def motor_viscous_coefficient(self) -> float:
+    def inertias(self) -> list[float]:
         """
-        C_m [N m s/rad]: Motor viscous friction (Table 2).
-        """
-    @property
-    def natural_frequency(self) -> float:
-        """
-        sqrt(k2 / J2) / 2 pi [Hz]: the disc on a rigidly held shaft end.
+        J of each inertia, rotary table first, bit last [kg m^2].
         """
     @property
-    def normal_force(self) -> float:
+    def initial_speed(self) -> float:
         """
-        N2 [N]: Normal force on the disc.
+        w(0) [rad/s]: Speed of every inertia at t = 0 (springs untwisted).
+        """
+    @property
+    def motor_torque(self) -> float:
+        """
+        u [N m]: Constant motor torque on the rotary table.
         """
     @property
     def period(self) -> None:
         """
-        None: the rig has no imposed period (its stick-slip period is an outcome).
+        None: the string has no imposed period (its stick-slip period is an outcome).
+        """
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def static_coefficient(self) -> float:
+        """
+        mu_sb [-]: Static bit friction, >= mu_cb.
+        """
+    @property
+    def stick_band(self) -> float:
+        """
+        D_v [rad/s]: Karnopp band (0: exact stick).
+        """
+    @property
+    def string_damping(self) -> float:
+        """
+        c_t [N m s/rad]: Structural damping of the string.
+        """
+    @property
+    def string_stiffness(self) -> float:
+        """
+        k_t [N m/rad]: Torsional stiffness of the string.
+        """
+    @property
+    def stuck_weight_threshold(self) -> float:
+        """
+        u / (R_b mu_sb) [N]: at or above this weight on bit a stuck string stays stuck (the bit holds u).
+        """
+    @property
+    def table_damping(self) -> float:
+        """
+        c_r [N m s/rad]: Viscous loss at the rotary table.
+        """
+    @property
+    def table_inertia(self) -> float:
+        """
+        J_r [kg m^2]: Rotary table inertia.
+        """
+    @property
+    def velocity_scale(self) -> float:
+        """
+        v_f [rad/s]: Bit speed scale of the weakening.
+        """
+    @property
+    def weakening_rate(self) -> float:
+        """
+        gamma_b [-]: Rate of the velocity weakening.
+        """
+    @property
+    def weight_on_bit(self) -> float:
+        """
+        W [N]: Weight on bit.
+        """
+class NavarroLopez4Dof:
+    """
+    The 4-DOF drill string of Navarro-Lopez & Cortes (2007): rotary table, two pipe inertias, bit. With pipe_wall_torque > 0 each pipe inertia also rubs the wellbore (Coulomb, with stick): the balance subtracts 2 T_p.
+    
+    A constant motor torque u drives the rotary table (viscous loss c_r); springs k and dampers d join the inertias;
+    the bit (last inertia) carries the velocity-weakening friction of NavarroLopezBit with stick, under weight on bit W:
+    
+        J_i w_i' = [i = 0] (u - c_r w_0) + S_{i-1} - S_i - T_i,   S_i = k_i (phi_i - phi_{i+1}) + d_i (w_i - w_{i+1})
+        T_b = c_b w_b + R_b W mu_b(w_b) sign(w_b),  mu_b = mu_cb + (mu_sb - mu_cb) exp(-gamma_b |w_b| / v_f)   (slip)
+        |T_b| <= R_b W mu_sb                                                                           (stick)
+    
+    Steady states (closed forms): while the bit turns every inertia runs at the root w of steady_balance(w) = 0,
+    u - (c_r + c_b) w - R_b W mu_b(w) = 0; at rest the bit holds while W >= stuck_weight_threshold = u / (R_b mu_sb).
+    Switches are located as events (exact stick, or a Karnopp band D_v). States: each inertia's speed [rad/s], each
+    spring's twist [rad], and motor_work = stored energy change + damping_work + friction_work [J]. The Result's
+    friction_force is the bit's torque T_b [N m]; the mode is 0 while everything turns forwards, 1 while the bit sticks.
+    
+    Defaults: the parameter set of the public code of Navarro-Lopez & Cortes' model.
+    
+    Keywords
+    --------
+    table_inertia : float = 930
+        J_r [kg m^2], positive and finite: Rotary table inertia.
+    upper_pipe_inertia : float = 2782.25
+        J_p1 [kg m^2], positive and finite: Upper pipe inertia.
+    lower_pipe_inertia : float = 750
+        J_p2 [kg m^2], positive and finite: Lower pipe inertia.
+    bit_inertia : float = 471.9698
+        J_b [kg m^2], positive and finite: Bit (and BHA) inertia.
+    table_stiffness : float = 698.063
+        k_r [N m/rad], positive and finite: Spring table - upper pipe.
+    pipe_stiffness : float = 1080
+        k_p [N m/rad], positive and finite: Spring upper - lower pipe.
+    bit_stiffness : float = 907.48
+        k_b [N m/rad], positive and finite: Spring lower pipe - bit.
+    table_spring_damping : float = 139.6126
+        d_r [N m s/rad], non-negative and finite: Damper table - upper pipe.
+    pipe_damping : float = 190
+        d_p [N m s/rad], non-negative and finite: Damper upper - lower pipe.
+    bit_spring_damping : float = 181.49
+        d_b [N m s/rad], non-negative and finite: Damper lower pipe - bit.
+    table_damping : float = 425
+        c_r [N m s/rad], non-negative and finite: Viscous loss at the rotary table.
+    pipe_wall_torque : float = 0
+        T_p [N m], non-negative and finite: Coulomb torque of each pipe inertia on the wellbore (0 in the paper: no contact).
+    bit_damping : float = 50
+        c_b [N m s/rad], non-negative and finite: Viscous torque coefficient at the bit.
+    bit_radius : float = 0.155575
+        R_b [m], positive and finite: Bit radius.
+    coulomb_coefficient : float = 0.5
+        mu_cb [-], positive and finite: Bit friction at high speed.
+    static_coefficient : float = 0.8
+        mu_sb [-], >= coulomb_coefficient and finite: Static bit friction, >= mu_cb.
+    weakening_rate : float = 0.9
+        gamma_b [-], non-negative and finite: Rate of the velocity weakening.
+    velocity_scale : float = 1
+        v_f [rad/s], positive and finite: Bit speed scale of the weakening.
+    stick_band : float = 0
+        D_v [rad/s], non-negative and finite: Karnopp band (0: exact stick).
+    motor_torque : float = 6000
+        u [N m], finite: Constant motor torque on the rotary table.
+    weight_on_bit : float = 30000
+        W [N], non-negative and finite: Weight on bit.
+    initial_speed : float = 0
+        w(0) [rad/s], finite: Speed of every inertia at t = 0 (springs untwisted).
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, *, table_inertia: float = 930, upper_pipe_inertia: float = 2782.25, lower_pipe_inertia: float = 750, bit_inertia: float = 471.9698, table_stiffness: float = 698.063, pipe_stiffness: float = 1080, bit_stiffness: float = 907.48, table_spring_damping: float = 139.6126, pipe_damping: float = 190, bit_spring_damping: float = 181.49, table_damping: float = 425, pipe_wall_torque: float = 0, bit_damping: float = 50, bit_radius: float = 0.155575, coulomb_coefficient: float = 0.5, static_coefficient: float = 0.8, weakening_rate: float = 0.9, velocity_scale: float = 1, stick_band: float = 0, motor_torque: float = 6000, weight_on_bit: float = 30000, initial_speed: float = 0) -> None:
+        """
+        The rig's parameters by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    def steady_balance(self, speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        u - (c_r + c_b) w - R_b W mu_b(w) - sum T_p [N m] at a common speed w > 0 [rad/s] (arrays broadcast): the sum of all equations with every inertia at w; its root is the steady speed while the bit turns.
+        """
+    @property
+    def bit(self) -> NavarroLopezBit:
+        """
+        The bit's law (NavarroLopezBit) built from this table's bit fields.
+        """
+    @property
+    def bit_damping(self) -> float:
+        """
+        c_b [N m s/rad]: Viscous torque coefficient at the bit.
+        """
+    @property
+    def bit_inertia(self) -> float:
+        """
+        J_b [kg m^2]: Bit (and BHA) inertia.
+        """
+    @property
+    def bit_radius(self) -> float:
+        """
+        R_b [m]: Bit radius.
+        """
+    @property
+    def bit_spring_damping(self) -> float:
+        """
+        d_b [N m s/rad]: Damper lower pipe - bit.
+        """
+    @property
+    def bit_stiffness(self) -> float:
+        """
+        k_b [N m/rad]: Spring lower pipe - bit.
+        """
+    @property
+    def coulomb_coefficient(self) -> float:
+        """
+        mu_cb [-]: Bit friction at high speed.
+        """
+    @property
+    def inertias(self) -> list[float]:
+        """
+        J of each inertia, rotary table first, bit last [kg m^2].
+        """
+    @property
+    def initial_speed(self) -> float:
+        """
+        w(0) [rad/s]: Speed of every inertia at t = 0 (springs untwisted).
+        """
+    @property
+    def lower_pipe_inertia(self) -> float:
+        """
+        J_p2 [kg m^2]: Lower pipe inertia.
+        """
+    @property
+    def motor_torque(self) -> float:
+        """
+        u [N m]: Constant motor torque on the rotary table.
+        """
+    @property
+    def period(self) -> None:
+        """
+        None: the string has no imposed period (its stick-slip period is an outcome).
+        """
+    @property
+    def pipe_damping(self) -> float:
+        """
+        d_p [N m s/rad]: Damper upper - lower pipe.
+        """
+    @property
+    def pipe_stiffness(self) -> float:
+        """
+        k_p [N m/rad]: Spring upper - lower pipe.
+        """
+    @property
+    def pipe_wall_torque(self) -> float:
+        """
+        T_p [N m]: Coulomb torque of each pipe inertia on the wellbore (0 in the paper: no contact).
+        """
+    @property
+    def state_names(self) -> list[str]:
+        ...
+    @property
+    def static_coefficient(self) -> float:
+        """
+        mu_sb [-]: Static bit friction, >= mu_cb.
+        """
+    @property
+    def stick_band(self) -> float:
+        """
+        D_v [rad/s]: Karnopp band (0: exact stick).
+        """
+    @property
+    def stuck_weight_threshold(self) -> float:
+        """
+        u / (R_b mu_sb) [N]: at or above this weight on bit a stuck string stays stuck (the bit holds u).
+        """
+    @property
+    def table_damping(self) -> float:
+        """
+        c_r [N m s/rad]: Viscous loss at the rotary table.
+        """
+    @property
+    def table_inertia(self) -> float:
+        """
+        J_r [kg m^2]: Rotary table inertia.
+        """
+    @property
+    def table_spring_damping(self) -> float:
+        """
+        d_r [N m s/rad]: Damper table - upper pipe.
+        """
+    @property
+    def table_stiffness(self) -> float:
+        """
+        k_r [N m/rad]: Spring table - upper pipe.
+        """
+    @property
+    def upper_pipe_inertia(self) -> float:
+        """
+        J_p1 [kg m^2]: Upper pipe inertia.
+        """
+    @property
+    def velocity_scale(self) -> float:
+        """
+        v_f [rad/s]: Bit speed scale of the weakening.
+        """
+    @property
+    def weakening_rate(self) -> float:
+        """
+        gamma_b [-]: Rate of the velocity weakening.
+        """
+    @property
+    def weight_on_bit(self) -> float:
+        """
+        W [N]: Weight on bit.
+        """
+class TorsionalString:
+    """
+    The torsional drill string of Aarsnes & Shor (2018, J. Pet. Sci. Eng. 163, 712-721; "A&S") with hundreds of wall
+    contacts, stepped by Moreau-Jean time-stepping: the contacts' stick and slip are captured by each step's inclusion
+    (no event per switch), which is what a field-resolution string needs (fs.StringRig locates every switch as an
+    event and drowns in them at a thousand contacts).
+    
+        string:    N elements of the DrillString (lump(N)); viscous damping k_t J omega per node (A&S eq 3)
+        wall:      at each node a Coulomb contact of static bound int F_c dx over its half elements,
+                   F_c(x) = mu sin(inc(x)) g rho A (1 - rho_mud / rho) r_o (A&S eq 6), kinetic f_rat times it; below
+                   omega_c a slipping node keeps the static level (A&S eq 4)
+        top drive: I_TD at node 0 under the PI tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10),
+                   continuous or sampled every control_period (zero-order hold, as A&S's code)
+        bit:       off bottom (weight_on_bit = 0): the bit torque T_b; on bottom: the velocity-weakening bit (a
+                   NavarroLopezBit under weight_on_bit) merged with node N's wall contact
+    
+    Closed forms of A&S sec. 4 (properties): breakoff_torque (eq 27), minimum_torque (eq 30), top_drive_twist (eq 29
+    at x = 0), build_up_time (eq 34), fundamental_period (the continuous string's lowest mode, top held) and
+    period_estimate (eq 40). fs.aarsnes_shor_well_b builds A&S's Well B.
+    
+    Parameters
+    ----------
+    string : DrillString
+    elements : int = 200
+        N >= 1: N + 1 nodes.
+    survey : (measured_depth, inclination) or Survey, optional
+        Inclination [rad] against measured depth [m], linear in between; it must reach the bit. Default: a straight
+        well of `inclination`.
+    contact_radius : sequence of float, optional
+        r_o per section [m]; default each section's OD / 2.
+    bit : NavarroLopezBit, optional
+        The on-bottom bit's law (used when weight_on_bit > 0); default NavarroLopezBit().
+    treatment : {"captured", "mixed"}
+        "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
+        located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+    
+    Keywords
+    --------
+    top_drive_inertia : float = 2900
+        I_TD [kg m^2], positive and finite: Top drive inertia.
+    proportional_gain : float = 38000
+        k_p [N m s/rad], non-negative and finite: PI proportional gain.
+    integral_gain : float = 100000
+        k_i [N m/rad], non-negative and finite: PI integral gain.
+    speed_setpoint : float = 4.1887902047863905
+        omega_SP [rad/s], finite: Top drive speed set-point.
+    setpoint_time_constant : float = 1
+        T_SP [s], non-negative and finite: Time constant of the set-point's ramp from rest; 0: a step.
+    control_period : float = 0
+        T_c [s], non-negative and finite: Sampling period of the PI (zero-order hold); 0: continuous.
+    friction_coefficient : float = 0.3
+        mu [-], non-negative and finite: Static wall friction coefficient.
+    kinetic_ratio : float = 0.65
+        f_rat [-], in [0, 1] (kinetic friction <= static): Kinetic over static friction.
+    stick_band_speed : float = 0
+        omega_c [rad/s], non-negative and finite: A&S eq 4: below it the friction keeps the static level; 0: kinetic as soon as it slips.
+    inclination : float = 1.0471975511965976
+        INC [rad], in [0, 3.14159265359]: Inclination of a straight well (ignored when a survey is given).
+    mud_density : float = 0
+        rho_mud [kg/m^3], non-negative and finite: Mud density (buoyancy).
+    damping_rate : float = 0
+        k_t [1/s], non-negative and finite: Viscous damping: torque k_t rho J omega per unit length.
+    bha_inertia : float = 0
+        J_BHA [kg m^2], non-negative and finite: Inertia lumped on the bit.
+    bit_torque : float = 0
+        T_b [N m], non-negative and finite: Torque on bit; off bottom 0.
+    gravity : float = 9.81
+        g [m/s^2], positive and finite: Acceleration of gravity.
+    weight_on_bit : float = 0
+        W [N], non-negative and finite: Weight on bit of the velocity-weakening bit at node N; 0: off bottom.
+    """
+    parameters: typing.ClassVar[tuple]
+    def __init__(self, string: DrillString, *, top_drive_inertia: float = 2900, proportional_gain: float = 38000, integral_gain: float = 100000, speed_setpoint: float = 4.1887902047863905, setpoint_time_constant: float = 1, control_period: float = 0, friction_coefficient: float = 0.3, kinetic_ratio: float = 0.65, stick_band_speed: float = 0, inclination: float = 1.0471975511965976, mud_density: float = 0, damping_rate: float = 0, bha_inertia: float = 0, bit_torque: float = 0, gravity: float = 9.81, weight_on_bit: float = 0, elements: int = 200, survey: typing.Any | None = None, contact_radius: collections.abc.Sequence[float] | None = None, bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, switch_tolerance: float = 1e-10) -> None:
+        """
+        The string, then the set-up and the parameters by keyword (see the class docstring).
+        """
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def _simulate(self, t_end: typing.SupportsFloat | typing.SupportsIndex, options: SolverOptions, t_start: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+        ...
+    def wall_friction_per_length(self, measured_depth: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+        """
+        F_c(x) of A&S eq 6 [N m/m] at measured depth x [m] (arrays broadcast).
+        """
+    @property
+    def bha_inertia(self) -> float:
+        """
+        J_BHA [kg m^2]: Inertia lumped on the bit.
+        """
+    @property
+    def bit(self) -> NavarroLopezBit:
+        """
+        The on-bottom bit's law (NavarroLopezBit).
+        """
+    @property
+    def bit_on_bottom(self) -> bool:
+        ...
+    @property
+    def bit_static_torque(self) -> float:
+        """
+        Node N's static bound with the bit on bottom [N m]: its wall's plus R_b W mu_sb.
+        """
+    @property
+    def bit_torque(self) -> float:
+        """
+        T_b [N m]: Torque on bit; off bottom 0.
+        """
+    @property
+    def breakoff_torque(self) -> float:
+        """
+        A&S eq 27: int_0^L F_c dx [N m], the torque the top drive must reach to free the bit.
+        """
+    @property
+    def build_up_time(self) -> float:
+        """
+        A&S eq 34: 2 (1 - f_rat) top_drive_twist / omega_SP [s].
+        """
+    @property
+    def contact_radius(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        r_o of each section [m].
+        """
+    @property
+    def control_period(self) -> float:
+        """
+        T_c [s]: Sampling period of the PI (zero-order hold); 0: continuous.
+        """
+    @property
+    def damping_rate(self) -> float:
+        """
+        k_t [1/s]: Viscous damping: torque k_t rho J omega per unit length.
+        """
+    @property
+    def element_length(self) -> float:
+        """
+        dx = L / N [m].
+        """
+    @property
+    def elements(self) -> int:
+        """
+        N.
+        """
+    @property
+    def friction_coefficient(self) -> float:
+        """
+        mu [-]: Static wall friction coefficient.
+        """
+    @property
+    def fundamental_period(self) -> float:
+        """
+        The continuous string's lowest torsional period [s], top held, the bit free with J_BHA.
+        """
+    @property
+    def gravity(self) -> float:
+        """
+        g [m/s^2]: Acceleration of gravity.
+        """
+    @property
+    def inclination(self) -> float:
+        """
+        INC [rad]: Inclination of a straight well (ignored when a survey is given).
+        """
+    @property
+    def integral_gain(self) -> float:
+        """
+        k_i [N m/rad]: PI integral gain.
+        """
+    @property
+    def kinetic_ratio(self) -> float:
+        """
+        f_rat [-]: Kinetic over static friction.
+        """
+    @property
+    def minimum_torque(self) -> float:
+        """
+        A&S eq 30: breakoff_torque (1 - 2 (1 - f_rat)) [N m], the cycle's minimum motor torque.
+        """
+    @property
+    def mud_density(self) -> float:
+        """
+        rho_mud [kg/m^3]: Mud density (buoyancy).
+        """
+    @property
+    def node_inertia(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        The string's inertia at each node [kg m^2] (without I_TD and J_BHA).
+        """
+    @property
+    def nodes(self) -> int:
+        """
+        N + 1.
+        """
+    @property
+    def period(self) -> None:
+        """
+        None: the string has no imposed period (its stick-slip period is an outcome).
+        """
+    @property
+    def period_estimate(self) -> float:
+        """
+        A&S eq 40: build_up_time + fundamental_period [s] (an upper estimate of the stick-slip period).
         """
     @property
     def proportional_gain(self) -> float:
         """
-        k_p [V s/rad]: PI proportional gain (Table 2).
+        k_p [N m s/rad]: PI proportional gain.
         """
     @property
-    def reference_speed(self) -> float:
+    def setpoint_time_constant(self) -> float:
         """
-        w_ref [rad/s]: Reference speed, load side (eq 3).
-        """
-    @property
-    def resistance(self) -> float:
-        """
-        R [Ohm]: Armature resistance (Table 2).
+        T_SP [s]: Time constant of the set-point's ramp from rest; 0: a step.
         """
     @property
-    def shaft_damping(self) -> float:
-        """
-        d2 [N m s/rad]: Shaft damping (Table 1).
-        """
+    def slow_speed(self) -> float:
+        ...
     @property
-    def shaft_stiffness(self) -> float:
+    def speed_setpoint(self) -> float:
         """
-        k2 [N m/rad]: Shaft stiffness (Table 1).
+        omega_SP [rad/s]: Top drive speed set-point.
         """
     @property
     def state_names(self) -> list[str]:
         ...
     @property
-    def torque_constant(self) -> float:
+    def static_friction_torque(self) -> numpy.typing.NDArray[numpy.float64]:
         """
-        K_T [N m/A]: Motor torque constant (Table 2).
+        Static bound of each node's wall contact [N m] (they add up to breakoff_torque).
         """
-class KinematicRig:
-    """
-    A friction law driven by a prescribed relative velocity v_r(t) [m/s] and normal force N(t) [N]: no mass, so
-    set-valued laws (Coulomb, Stribeck) give their slip force on the branch sgn(v_r); reversals of v_r are located
-    as events. This is the model that identification from measured signals fits (frictionsim.fit).
-    
-    States: the law's state (dahl_deflection / bristle_deflection [m]), friction_impulse int F dt [N s] and
-    friction_work int F v_r dt [J].
-    
-    Parameters
-    ----------
-    friction : a friction law (any class of fs.FRICTION_LAWS, a Stribeck law without Karnopp band, fs.CallableLaw) or
-        fs.HystereticFriction (paper 001's eq 6: relative_velocity is then the disc speed w [rad/s], its derivative
-        dw/dt picks the branch (a callable's by central difference), friction_force is the torque [N m]; modes 0
-        stick band, +-1 accelerating, +-2 decelerating)
-    relative_velocity : float | callable t -> v_r | (t, v_r) pair of arrays (piecewise linear)
-    normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every time
-    initial_state : sequence of float, optional
-        The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
-    """
-    @staticmethod
-    def harmonic(friction: typing.Any, *, sliding_velocity: typing.SupportsFloat | typing.SupportsIndex, velocity_amplitude: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, normal_force: typing.Any, initial_state: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None = None) -> KinematicRig:
+    @property
+    def stick_band_speed(self) -> float:
         """
-        The paper's relative velocity v_r = v_d - v_a cos(2 pi f t) (eqs 8-9, 16), v_a [m/s], f [Hz].
+        omega_c [rad/s]: A&S eq 4: below it the friction keeps the static level; 0: kinetic as soon as it slips.
         """
-    def __init__(self, friction: typing.Any, *, relative_velocity: typing.Any, normal_force: typing.Any, initial_state: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None = None) -> None:
-        ...
-    def __reduce__(self) -> tuple:
-        ...
-    def __repr__(self) -> typing.Any:
-        ...
-    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
+    @property
+    def string(self) -> DrillString:
+        """
+        The DrillString.
+        """
+    @property
+    def survey(self) -> typing.Any:
+        """
+        (measured_depth [m], inclination [rad]) as given, or None (a straight well).
+        """
+    @property
+    def switch_tolerance(self) -> float:
         ...
     @property
-    def frequency(self) -> float | None:
+    def top_drive_inertia(self) -> float:
         """
-        f [Hz] of a harmonic relative velocity, else None.
+        I_TD [kg m^2]: Top drive inertia.
         """
     @property
-    def friction(self) -> typing.Any:
+    def top_drive_twist(self) -> float:
+        """
+        A&S eq 29 at x = 0: int_0^L tau(x) / (J G)(x) dx [rad], tau(x) = int_x^L F_c: the twist of the string holding the break-off torque profile.
+        """
+    @property
+    def treatment(self) -> str:
         ...
     @property
-    def initial_state(self) -> list[float] | None:
-        ...
-    @property
-    def normal_force(self) -> typing.Any:
-        ...
-    @property
-    def period(self) -> float | None:
+    def weight_on_bit(self) -> float:
         """
-        Period 1/f [s] of a harmonic relative velocity, else None.
-        """
-    @property
-    def relative_velocity(self) -> typing.Any:
-        ...
-    @property
-    def state_names(self) -> list[str]:
-        ...
-class AxialVibrationRig:
-    """
-    The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
-    k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:
-    
-        m x'' = F_d - F_F - F_g,   F_d = k_d (v_d t - x),   v_r = x' - u0 w cos(w t).
-    
-    Defaults are the paper's Fig. 7(a) dry case (u0 = 5 mm, f = 17 Hz, v_d = 1 mm/s, F_N = 90 N; m = 0.2 kg,
-    k_d = 2e4 N/m chosen, the paper gives no drive stiffness). SI units.
-    
-    States: position x [m], velocity x' [m/s], the law's states, friction_impulse [N s], friction_work [J],
-    drive_work [J] (drive work = energy change + friction work).
-    
-    Parameters
-    ----------
-    friction : a friction law (any class of fs.FRICTION_LAWS, or fs.CallableLaw)
-    gravity : bool = False
-        Vertical rig: F_g = m g opposes the sliding.
-    initial_position : float, optional
-        x(0) [m]; default 0, or -m g / k_d with gravity (the spring carries the weight).
-    
-    Keywords
-    --------
-    mass : float = 0.2
-        m [kg], positive and finite: Specimen mass (0.2 kg: 170 x 30 x 5 mm of 45 steel).
-    drive_stiffness : float = 20000
-        k_d [N/m], positive and finite: Drive spring stiffness (not given by the paper; 2e4 N/m chosen).
-    sliding_velocity : float = 0.001
-        v_d [m/s], non-negative and finite: Drive (sliding) velocity.
-    amplitude : float = 0.005
-        u0 [m], non-negative and finite: Vibration amplitude of the surface.
-    frequency : float = 17
-        f [Hz], positive and finite: Vibration frequency (w = 2 pi f).
-    normal_force : float = 90
-        F_N [N], positive and finite: Normal force.
-    gravitational_acceleration : float = 9.81
-        g [m/s^2], non-negative and finite: Used when gravity is on (vertical rig).
-    initial_velocity : float = 0
-        x'(0) [m/s], finite: Initial velocity.
-    """
-    parameters: typing.ClassVar[tuple]
-    def __init__(self, friction: typing.Any, *, mass: float = 0.2, drive_stiffness: float = 20000, sliding_velocity: float = 0.001, amplitude: float = 0.005, frequency: float = 17, normal_force: float = 90, gravitational_acceleration: float = 9.81, initial_velocity: float = 0, gravity: bool = False, initial_position: float | None = None) -> None:
-        """
-        The friction law, then the rig's parameters by keyword (see the class docstring).
-        """
-    def __reduce__(self) -> tuple:
-        ...
-    def __repr__(self) -> typing.Any:
-        ...
-    def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
-        ...
-    def drive_force(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], position: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-        """
-        F_d = k_d (v_d t - x) [N] (eq 7).
-        """
-    def surface_velocity(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-        """
-        Velocity of the vibrating surface u0 w cos(w t) [m/s].
-        """
-    @property
-    def amplitude(self) -> float:
-        """
-        u0 [m]: Vibration amplitude of the surface.
-        """
-    @property
-    def drive_stiffness(self) -> float:
-        """
-        k_d [N/m]: Drive spring stiffness (not given by the paper; 2e4 N/m chosen).
-        """
-    @property
-    def frequency(self) -> float:
-        """
-        f [Hz]: Vibration frequency (w = 2 pi f).
-        """
-    @property
-    def friction(self) -> typing.Any:
-        ...
-    @property
-    def gravitational_acceleration(self) -> float:
-        """
-        g [m/s^2]: Used when gravity is on (vertical rig).
-        """
-    @property
-    def gravity(self) -> bool:
-        ...
-    @property
-    def initial_position(self) -> float | None:
-        ...
-    @property
-    def initial_velocity(self) -> float:
-        """
-        x'(0) [m/s]: Initial velocity.
-        """
-    @property
-    def mass(self) -> float:
-        """
-        m [kg]: Specimen mass (0.2 kg: 170 x 30 x 5 mm of 45 steel).
-        """
-    @property
-    def normal_force(self) -> float:
-        """
-        F_N [N]: Normal force.
-        """
-    @property
-    def period(self) -> float:
-        """
-        Vibration period 1/f [s].
-        """
-    @property
-    def sliding_velocity(self) -> float:
-        """
-        v_d [m/s]: Drive (sliding) velocity.
-        """
-    @property
-    def state_names(self) -> list[str]:
-        ...
-    @property
-    def vibration_velocity_amplitude(self) -> float:
-        """
-        v_a = 2 pi f u0 [m/s] (eq 16).
+        W [N]: Weight on bit of the velocity-weakening bit at node N; 0: off bottom.
         """
 class Survey:
     """
@@ -2534,6 +3336,26 @@ def _rebuild(arg0: type, arg1: tuple, arg2: dict, arg3: str) -> typing.Any:
     """
     Unpickling: cls(*args, **kwargs), or cls.<factory>(...), through the validating constructor.
     """
+def aarsnes_shor_well_b(collar: str = 'as_published', wave_speed: str = 'as_code', measured_depth: typing.SupportsFloat | typing.SupportsIndex = 2500.0, **kwargs) -> TorsionalString:
+    """
+    Well B of Aarsnes & Shor (2018) as a TorsionalString (parameters_WellB.m, MAIN.m: mu 0.3, f_rat 0.65,
+    40 rpm), at measured_depth [m] (230 < md <= 4000): 5.77" pipe above a 230 m BHA averaged over its four sections,
+    G 61 / 67 GPa, rho 7850, I_TD 2900, k_p 38e3, k_i 100e3, the survey 0 / 0 / 60 / 60 deg at 0 / 500 / 1600 /
+    4000 m, omega_c 1.5 rad/s, the PI sampled every 0.01 s, the code's damping at its grid; elements 1000 (the
+    published grid), the stuck fraction counted below 1.5 rad/s (slow_speed) as the code counts it. Further keywords (elements=, treatment=, any table keyword) override the preset's.
+    
+    collar : {"as_published", "corrected"}
+        The collar's polar moment: parameters_WellB.m's line carries an extra factor pi ("as_published", what the
+        published results were computed with), or the length-averaged pi (OD^4 - ID^4) / 32 ("corrected").
+    wave_speed : {"as_code", "physical"}
+        torsionalWaveStep.m updates the collar with the pipe's wave speed sqrt(G_p / rho) while its torque is J_c G_c
+        times the strain: a collar of density rho G_c / G_p, 67/61 = 1.098 times the steel's ("as_code"), or steel
+        ("physical").
+    
+    The break-off torque (eq 27) depends on the wave-speed variant only: the collar variants share the collar's
+    area, hence its weight, and the polar moment does not enter the wall friction. "physical" gives the paper's
+    analytic 19.531 kN m; "as_code" weighs the collar 67/61 times heavier, hence more wall friction: 20.536 kN m.
+    """
 def equivalent_rig_normal_force(params: HydraulicOscillatorParams) -> float:
     ...
 def hot_contact_stress(params: HydraulicOscillatorParams) -> float:
@@ -2578,7 +3400,8 @@ def whole_cycle_window(t_first: typing.SupportsFloat | typing.SupportsIndex, t_l
     """
     (t_a, t_b, cycles): whole cycles of `period` [s] after `transient` [s]; cycles <= 0 takes all that fit.
     """
-FRICTION_LAWS: tuple = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip)
+FRICTION_LAWS: tuple = (Coulomb, Stribeck, Dahl, LuGre, ElastoPlastic, GeneralizedMaxwellSlip, Leuven)
+HAS_EIGEN: bool = True
 HAS_SUNDIALS: bool = True
-RIGS: tuple = (AxialVibrationRig, KinematicRig, TorsionalRig, StringRig)
+RIGS: tuple = (AxialVibrationRig, KinematicRig, TorsionalRig, StringRig, NavarroLopez2Dof, NavarroLopez4Dof, TorsionalString)
 __version__: str = '0.1.0'

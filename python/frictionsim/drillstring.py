@@ -137,8 +137,8 @@ class StickSlip:
     """Stick-slip measures of one run after its transient, bit speed against the set surface speed w_set.
 
     peak_ratio, mean_ratio : max and time-mean of the bit speed over w_set
-    stuck_fraction : fraction of the time the bit is stuck (bit speed exactly 0: the engine's stick is exact; a
-        TorsionalString's bit below its slow_speed, as A&S's code counts it)
+    stuck_fraction : fraction of the time the bit is stuck (bit speed exactly 0: the engine's stick is exact;
+    a TorsionalString's bit: below its slow_speed, as A&S's code counts it)
     sticks : the bit stuck at least once (full stick-slip)
     surface_peak_ratio : max surface speed over w_set (the PI drive's overshoot)
     """

@@ -168,7 +168,7 @@ def test_keywords_are_the_fields_keys_with_defaults_repr_and_pickle():
             leuven.hysteresis_shape, leuven.attraction_exponent, leuven.micro_damping,
             leuven.viscous_damping) == (MU, MU_S, V_S, K, H, N_EXP, SIGMA1, SIGMA2)
     assert [p.name for p in leuven.parameters] == [
-        "mu", "mu_static", "stribeck_velocity", "shape_exponent", "presliding_stiffness", "hysteresis_shape",
+        "mu", "mu_static", "stribeck_velocity", "presliding_stiffness", "shape_exponent", "hysteresis_shape",
         "attraction_exponent", "memory_depth", "micro_damping", "viscous_damping"]
     assert leuven.key == "leuven" and not leuven.has_stick and leuven.stiff
     assert leuven.state_names[0] == "presliding_displacement" and len(leuven.state_names) == 12

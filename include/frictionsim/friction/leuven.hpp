@@ -105,10 +105,11 @@ bottom_turning_force [N], turning_point_1..8 [m]), which changes only at reversa
          "Static coefficient: s(0) = mu_static F_N.", "mu_static", true},
         {"stribeck_velocity", "v_s", "m/s", Rule::positive(), &Params::stribeck_velocity, "Stribeck velocity.",
          nullptr, true},
-        {"shape_exponent", "delta", "-", Rule::positive(), &Params::shape_exponent,
-         "Shape of the Stribeck decay (2: Gaussian, 1: exponential).", nullptr},
+        // the required fields first: Python's signature is written in this order
         {"presliding_stiffness", "k", "N/m", Rule::positive(), &Params::presliding_stiffness,
          "Initial slope of the hysteresis force's virgin curve (LuGre's sigma_0 when h = 0).", nullptr, true},
+        {"shape_exponent", "delta", "-", Rule::positive(), &Params::shape_exponent,
+         "Shape of the Stribeck decay (2: Gaussian, 1: exponential).", nullptr},
         {"hysteresis_shape", "h", "-",
          Rule::interval(0.0, 1.0, false, true)
              .because("the virgin curve's asymptote mu_static F_N / h must lie above the static force"),
