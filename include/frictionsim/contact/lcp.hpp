@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "../detail/validate.hpp"
-#include "mode.hpp"
+#include "../contact_mode.hpp"
 
 namespace frictionsim {
 

@@ -28,7 +28,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "../contact/mode.hpp"
+#include "../contact_mode.hpp"
 #include "../detail/traits.hpp"
 
 namespace frictionsim {
