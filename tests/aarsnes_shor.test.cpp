@@ -334,6 +334,9 @@ TEST_CASE("torsional string: bad parameters name the parameter", "[aarsnes_shor]
     bad.measured_depth[2] = 100.0;
     CHECK(rejected_parameter([&] { TorsionalString(c.string, c.params, 10, bad); }) == "survey.measured_depth");
     CHECK(rejected_parameter([&] { TorsionalString(c.string, c.params, 0); }) == "elements");
+    p = c.params;
+    p.mud_density = 7850.0;  // the steel's: the string would float, its wall friction zero or negative
+    CHECK(rejected_parameter([&] { TorsionalString(c.string, p, 10); }) == "mud_density");
     const TorsionalString ts(c.string, c.params, 10, c.survey, c.contact_radius);
     TorsionalStringRunOptions o;
     o.output_interval = 0.0015;  // not a multiple of the 1 ms step

@@ -282,6 +282,7 @@ def test_navarro_lopez_keywords_properties_repr_and_pickle(cls):
     (lambda s: fs.TorsionalString(s, treatment="mixed"), "treatment"),  # the bit is off bottom
     (lambda s: fs.TorsionalString(s, treatment="exact"), "treatment"),  # every contact exact: fs.StringRig
     (lambda s: fs.TorsionalString(s, kinetic_ratio=1.5), "kinetic_ratio"),
+    (lambda s: fs.TorsionalString(s, mud_density=9000.0), "mud_density"),  # heavier than the steel: it would float
     (lambda s: fs.TorsionalString(s, contact_radius=[0.07]), "contact_radius"),
     (lambda s: fs.aarsnes_shor_well_b(collar="pi"), "collar"),
     (lambda s: fs.aarsnes_shor_well_b(wave_speed="fast"), "wave_speed"),
@@ -312,6 +313,8 @@ def test_a_new_table_with_any_parameters_builds_or_is_refused_naming_the_paramet
     rules = FIELD_TABLES[cls]
     expect = all(valid(rules[k], v) for k, v in kwargs.items())
     expect = expect and all(kwargs[p.name] >= kwargs[p.at_least] for p in cls.parameters if p.at_least)
+    if cls is fs.TorsionalString and "mud_density" in kwargs:  # the rule across tables: mud lighter than the steel
+        expect = expect and kwargs["mud_density"] < fs.PipeSection(length=500.0).density
     try:
         built = _build(cls, kwargs)
     except fs.InvalidParameterError as error:

@@ -164,6 +164,11 @@ public:
             detail::reject("TorsionalString", "contact_radius", "one per section (count given)",
                            static_cast<double>(radius_.size()));
         for (double r : radius_) detail::require_positive("TorsionalString", "contact_radius", r);
+        for (const PipeSection& s : sections)  // a buoyed weight <= 0 would make a wall's bound negative
+            if (!(p_.mud_density < s.density))
+                detail::reject("TorsionalString", "mud_density",
+                               "below every section's density (the string would float: no wall friction)",
+                               p_.mud_density);
         if (!survey_.empty()) {
             if (survey_.inclination.size() != survey_.measured_depth.size())
                 detail::reject("TorsionalString", "survey.inclination", "one per survey.measured_depth (count given)",
