@@ -31,7 +31,22 @@ FRICTIONSIM_WHEEL_DIR="${FRICTIONSIM_WHEEL_DIR:-$FRICTIONSIM_ROOT/out/wheel}"
 FRICTIONSIM_DEB_PACKAGES=(cmake ninja-build g++ binutils libsundials-dev libsuitesparse-dev libeigen3-dev catch2
     libbenchmark-dev python3-venv python3-dev valgrind chromium chromium-driver)
 
-frictionsim_log() { printf '\n==> %s\n' "$*" >&2; }
+# Every step's line says when it starts (wall seconds since the outermost script began: FRICTIONSIM_T0 is exported,
+# so scripts/check run by scripts/test counts from the same start) and how long the step before it took (also across
+# that boundary: FRICTIONSIM_STEP_T0 is exported too), so a CI log shows where the time goes. frictionsim_log_total
+# prints the total at the end.
+export FRICTIONSIM_T0="${FRICTIONSIM_T0:-$(date +%s)}"
+export FRICTIONSIM_STEP_T0="${FRICTIONSIM_STEP_T0:-$FRICTIONSIM_T0}"
+frictionsim_log() {
+    local now
+    now="$(date +%s)"
+    printf '\n==> [%5d s, the step before %4d s] %s\n' "$((now - FRICTIONSIM_T0))" "$((now - FRICTIONSIM_STEP_T0))" \
+        "$*" >&2
+    FRICTIONSIM_STEP_T0="$now"
+}
+frictionsim_log_total() {
+    frictionsim_log "$* (total wall time $(( $(date +%s) - FRICTIONSIM_T0 )) s)"
+}
 
 frictionsim_install_deps() {
     if [[ "${FRICTIONSIM_SKIP_DEPS:-0}" == 1 ]]; then
