@@ -23,6 +23,8 @@
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
 
+#include "three_km_string.hpp"
+
 // The Eigen Rosenbrock integrator (RODAS4, Method::rosenbrock) joins the comparison where frictionsim::eigen
 // provides it (FRICTIONSIM_EIGEN) and its header is in the tree.
 #if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN && __has_include(<frictionsim/eigen/rosenbrock.hpp>)
@@ -35,32 +37,11 @@ namespace {
 
 // ---- the event-driven string -------------------------------------------------------------------------------------
 
-/// The 3 km case: 2800 m of 5" 19.5 ppf drill pipe over 200 m of 6.5" x 2.81" collars in a straight hole inclined
-/// 0.5 rad (28.6 deg), 1200 kg/m^3 mud, Coulomb walls (mu 0.2 kinetic, 0.3 static) at every node but the bit's,
-/// structural damping beta = 2 ms, a 500 kg m^2 top drive under PI control (k_p 3e3, k_i 1e3) at 3 rad/s, and
-/// the Navarro-Lopez velocity-weakening bit (R_b 0.156 m, mu 0.5 .. 0.8, c_b 50 N m s/rad) on bottom at
-/// W = 150 kN. From rest the string winds up against the stuck bit for 29 s, then the bit slips (peaks ~23 rad/s)
-/// and sticks again, three times in 60 s; at N = 300 the walls switch about 2000 times in 60 s.
-using Rig = StringRig<Coulomb, VelocityWeakeningBit>;
-
-Rig three_km_string(std::size_t elements) {
-    PipeSection pipe;
-    pipe.length = 2800.0;
-    PipeSection collar;
-    collar.outer_diameter = 0.1651;
-    collar.inner_diameter = 0.0714;
-    collar.length = 200.0;
-    StringRigParams p;
-    p.inclination = 0.5;
-    p.damping_time = 2e-3;
-    p.surface_speed = 3.0;
-    p.top_drive_inertia = 500.0;
-    p.proportional_gain = 3e3;
-    p.integral_gain = 1e3;
-    StringRigSetup s;
-    s.elements = elements;
-    return Rig(DrillString({pipe, collar}), p, s, Coulomb(0.2, 0.3), VelocityWeakeningBit(NavarroLopezBit(), 1.5e5));
-}
+/// The 3 km case (bench/three_km_string.hpp): from rest the string winds up against the stuck bit for 29 s, then the
+/// bit slips (peaks ~23 rad/s) and sticks again, three times in 60 s; at N = 300 the walls switch about 2000 times
+/// in 60 s.
+using Rig = bench::ThreeKmRig;
+using bench::three_km_string;
 
 enum class Integrator { dormand_prince, cvode_band, cvode_klu, cvode_dense, rodas4_band };
 

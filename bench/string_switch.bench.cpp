@@ -22,39 +22,20 @@
 #include <cstddef>
 #include <string>
 
-#include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
-#include <frictionsim/string/string_rig.hpp>
+
+#include "three_km_string.hpp"
 
 using namespace frictionsim;
 
 namespace {
 
-/// bench/drillstring.bench.cpp's 3 km string (2800 m of 5" pipe over 200 m of 6.5" collars, 0.5 rad inclination,
-/// Coulomb walls mu 0.2 / 0.3 at every node but the bit's, beta = 2 ms, PI top drive at 3 rad/s, the Navarro-Lopez
-/// bit on bottom at 150 kN), started turning at the set speed so that the walls break free and stick again from
-/// the first second on: every wall contact switches a few times per second, so the switches grow with N.
-using Rig = StringRig<Coulomb, VelocityWeakeningBit>;
+/// The benchmarks' 3 km string (bench/three_km_string.hpp), started turning at the set speed (3 rad/s) so that the
+/// walls break free and stick again from the first second on: every wall contact switches a few times per second,
+/// so the switches grow with N.
+using Rig = bench::ThreeKmRig;
 
-Rig switching_string(std::size_t elements) {
-    PipeSection pipe;
-    pipe.length = 2800.0;
-    PipeSection collar;
-    collar.outer_diameter = 0.1651;
-    collar.inner_diameter = 0.0714;
-    collar.length = 200.0;
-    StringRigParams p;
-    p.inclination = 0.5;
-    p.damping_time = 2e-3;
-    p.surface_speed = 3.0;
-    p.initial_speed = 3.0;
-    p.top_drive_inertia = 500.0;
-    p.proportional_gain = 3e3;
-    p.integral_gain = 1e3;
-    StringRigSetup s;
-    s.elements = elements;
-    return Rig(DrillString({pipe, collar}), p, s, Coulomb(0.2, 0.3), VelocityWeakeningBit(NavarroLopezBit(), 1.5e5));
-}
+Rig switching_string(std::size_t elements) { return bench::three_km_string(elements, 3.0); }
 
 void string_switch(benchmark::State& state, Method method) {
     const auto n = static_cast<std::size_t>(state.range(0));
