@@ -188,7 +188,7 @@ TEST_CASE("axial wave: the travelling-wave estimate against the event-driven str
 }
 
 TEST_CASE("axial wave: with a free bit below the tool, the standing wave against the event-driven string",
-          "[oscillator]") {
+          "[oscillator][heavy]") {
     // 1500 m of pipe as above, the tool (F = 42.4 kN, 18 Hz) 200 m above the free bit (node 130 of 150, off bottom:
     // velocity reflection R = +1). Between the tool and the bit the direct and reflected waves stand: the run's
     // first harmonic has its nodes and antinodes where the estimate's interference puts them (a minimum 70 m

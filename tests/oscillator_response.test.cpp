@@ -35,7 +35,7 @@ Survey horizontal(double length) { return Survey({{0.0, pi / 2.0, 0.0}, {length,
 }  // namespace
 
 TEST_CASE("oscillator response: a frictionless string resonates at (2n - 1) c / 4L (held hook, free bit)",
-          "[oscillator][dynamic]") {
+          "[oscillator][dynamic][heavy]") {
     // 1000 m of pipe hanging in a vertical hole without friction, the hook held, the bit free (no weight on bit):
     // the fixed-free rod, f_n = (2n - 1) c / (4 L). A tool at the bit drives it; light structural damping
     // (beta = 3 ms: modal ratios 1.2, 3.6, 6 %) keeps the peaks finite. The driven point's speed amplitude,
@@ -83,7 +83,7 @@ TEST_CASE("oscillator response: a frictionless string resonates at (2n - 1) c / 
 }
 
 TEST_CASE("oscillator response: with wall friction, the travelling-wave estimate where it holds; the same zone",
-          "[oscillator][dynamic]") {
+          "[oscillator][dynamic][heavy]") {
     // 1400 m of pipe sliding at 30 m/h in a horizontal hole (mu 0.3), a tool (F = 34 kN, 18 Hz) in the middle,
     // through OscillatorDrag (1 m elements) by both routes. The estimate: a_0 = F / (2 Z) at the tool, b = sqrt(a^2 -
     // V^2) falling linearly to zero 400 m away each way. The dynamic run (80 elements, windows of 8 cycles until

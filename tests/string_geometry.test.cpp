@@ -188,7 +188,7 @@ TEST_CASE("string rig in a surveyed build: at rest the hook carries the soft-str
 }
 
 TEST_CASE("string rig in a surveyed build: turning steadily, the surface torque is the soft-string torque",
-          "[string_geometry][string_rig]") {
+          "[string_geometry][string_rig][heavy]") {
     // rotating off bottom: the friction is wholly circumferential, the axial balance stays the hanging one and the
     // steady surface torque is sum mu N_i r. The soft string sums mu F_n r over elements (F_n under each element's
     // lower-end tension, where the rig's forces take the mean): at 1 m and 0.5 m elements it has converged to

@@ -519,7 +519,7 @@ TEST_CASE("string rig: the analytic banded Jacobian matches difference quotients
 }
 
 TEST_CASE("string rig: Dormand-Prince, CVODE BDF (dense and band) and RODAS4 give the same stick-slip run",
-          "[string_rig]") {
+          "[string_rig][heavy]") {
     const auto rig = stick_slip_rig(8);
     SolverOptions o;
     o.rtol = 1e-10;
@@ -1042,7 +1042,7 @@ void require_same_run(const Result& a, const std::vector<std::string>& names_a, 
 }  // namespace
 
 TEST_CASE("string rig: PiTopDrive and PrescribedSpeed as drive types run bit for bit as the run-time choice",
-          "[string_rig][top_drive]") {
+          "[string_rig][top_drive][heavy]") {
     // The same stick-slip runs through StringRig<..., TopDriveChoice> (StringRigSetup::top_drive) and through the
     // drive types themselves, on every integrator (the analytic Jacobian's drive rows in RODAS4 and CVODE).
     SECTION("the PI drive, reaching and holding its limit") {
