@@ -56,9 +56,7 @@ fs::TorsionalString torsional_string(std::size_t n) {
     p.kinetic_ratio = 2.0 / 3.0;
     p.bha_inertia = 40.0;
     p.weight_on_bit = weight;
-    fs::InclinationSurvey survey;
-    survey.measured_depth = {0.0, 200.0, 500.0};
-    survey.inclination = {0.0, 0.0, fs::pi / 3.0};
+    const fs::Survey survey({{0.0, 0.0, 0.0}, {200.0, 0.0, 0.0}, {500.0, fs::pi / 3.0, 0.0}});
     return fs::TorsionalString(fs::DrillString({pipe()}), p, n, survey);
 }
 

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include <frictionsim/string/string_rig.hpp>
+#include <frictionsim/string/treatment.hpp>
 
 #include "law_binding.hpp"
 #include "simulation.hpp"
@@ -758,6 +759,26 @@ Keywords
             }
             return out + changed_fields_repr(r.params, rig_fields) + ")";
         });
+
+    // ---- the treatment of a string's contacts, chosen by the measured rule (string/treatment.hpp)
+    m.def(
+        "automatic_treatment",
+        [](long wall_contacts, bool bit_on_bottom) {
+            if (wall_contacts < 0) detail::reject("automatic_treatment", "wall_contacts", ">= 0",
+                                                  static_cast<double>(wall_contacts));
+            return std::string(
+                treatment_name(automatic_treatment(static_cast<std::size_t>(wall_contacts), bit_on_bottom)));
+        },
+        py::arg("wall_contacts"), py::arg("bit_on_bottom"), R"doc(
+The contact treatment a drill string of `wall_contacts` wall contacts runs cheapest in: "exact" (fs.StringRig,
+every switch located), "mixed" (fs.TorsionalString with the bit's switches located, the walls captured) or
+"captured" (fs.TorsionalString, Moreau-Jean over every contact).
+
+The rule, measured (bench/mixed.bench.cpp: the cost to reach 1e-4 s in the bit's switch times, ratios within one
+run): exact up to 30 contacts (at 10 the mixed costs 3.1x and the captured 8.7x the exact), mixed up to 300 with
+the bit on bottom (at 100 the exact costs 1.25x and the captured 1.7x the mixed), captured beyond (at 1000 the
+mixed costs 1.07x and the exact 1.43x the captured). Off bottom the mixed treatment is the captured one.
+)doc");
     return std::move(cls);
 }
 

@@ -67,21 +67,53 @@ std::vector<double> reals_from(py::handle value, const char* keyword) {
     return out;
 }
 
-/// A survey: (measured_depth, inclination) [m, rad], or anything with those attributes (fs.Survey).
-InclinationSurvey survey_from(py::handle value) {
-    InclinationSurvey s;
-    if (py::hasattr(value, "measured_depth") && py::hasattr(value, "inclination")) {
-        s.measured_depth = reals_from(value.attr("measured_depth"), "survey.measured_depth");
-        s.inclination = reals_from(value.attr("inclination"), "survey.inclination");
-        return s;
+/// The survey as given: an fs.Survey (the one survey type; its azimuths count), or (measured_depth, inclination)
+/// [m, rad] (or anything with those attributes), a well in one vertical plane. Kept as given for repr and pickling.
+struct GivenSurvey {
+    std::optional<Survey> survey;           ///< none: the straight well of params.inclination
+    bool as_pair = false;
+    std::vector<double> measured_depth, inclination;  ///< the pair as given
+
+    /// The pair as a Survey (azimuth 0): one station is the straight well of that inclination.
+    static GivenSurvey from_pair(std::vector<double> md, std::vector<double> inc) {
+        GivenSurvey g;
+        g.as_pair = true;
+        if (inc.size() != md.size())
+            detail::reject(name, "survey.inclination", "one per survey.measured_depth (count given)",
+                           static_cast<double>(inc.size()));
+        g.measured_depth = md;
+        g.inclination = inc;
+        if (md.empty()) return g;
+        std::vector<SurveyStation> stations;
+        for (std::size_t i = 0; i < md.size(); ++i) {
+            if (!(inc[i] >= 0.0 && inc[i] <= pi)) detail::reject(name, "survey.inclination", "in [0, pi] rad", inc[i]);
+            stations.push_back(SurveyStation{md[i], inc[i], 0.0});
+        }
+        if (stations.size() == 1) stations.push_back(SurveyStation{md[0] + 1.0, inc[0], 0.0});
+        try {
+            g.survey = Survey(std::move(stations));
+        } catch (const InvalidParameter& e) {  // name the keyword as the user wrote it
+            throw InvalidParameter("survey." + e.parameter(), std::string(name) + ": survey: " + e.what());
+        }
+        return g;
     }
+};
+
+GivenSurvey survey_from(py::handle value) {
+    if (py::isinstance<Survey>(value)) {
+        GivenSurvey g;
+        g.survey = value.cast<Survey>();
+        return g;
+    }
+    if (py::hasattr(value, "measured_depth") && py::hasattr(value, "inclination"))
+        return GivenSurvey::from_pair(reals_from(value.attr("measured_depth"), "survey.measured_depth"),
+                                      reals_from(value.attr("inclination"), "survey.inclination"));
     if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value) || py::len(value) != 2)
         throw py::type_error(std::string(name) + ": survey must be (measured_depth, inclination) [m, rad] or an "
                                                  "fs.Survey (got " + type_name(value) + ")");
     const py::sequence pair = py::reinterpret_borrow<py::sequence>(value);
-    s.measured_depth = reals_from(pair[0], "survey.measured_depth");
-    s.inclination = reals_from(pair[1], "survey.inclination");
-    return s;
+    return GivenSurvey::from_pair(reals_from(pair[0], "survey.measured_depth"),
+                                  reals_from(pair[1], "survey.inclination"));
 }
 
 template <class T>
@@ -94,19 +126,19 @@ struct BoundTorsionalString {
     DrillString string;
     TorsionalStringParams params;
     std::size_t elements;
-    InclinationSurvey survey;                   ///< empty: the straight well of params.inclination
+    GivenSurvey survey;
     std::optional<std::vector<double>> radius;  ///< as given; none: each section's OD / 2
     std::optional<NavarroLopezBit> bit;         ///< as given; none: the default NavarroLopezBit
     Treatment treatment;
     double slow_speed, switch_tolerance;
     TorsionalString model;
 
-    BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, InclinationSurvey sv,
+    BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, GivenSurvey sv,
                          std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t,
                          double slow, double tolerance)
         : string(std::move(s)), params(p), elements(n), survey(std::move(sv)), radius(std::move(r)), bit(std::move(b)),
           treatment(t), slow_speed(slow), switch_tolerance(tolerance),
-          model(checked(string, survey, treatment, params, elements), params, elements, survey,
+          model(checked(string, survey.survey, treatment, params, elements), params, elements, survey.survey,
                 radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {
         model.set_bit_treatment(t == Treatment::mixed ? BitTreatment::exact : BitTreatment::captured, tolerance);
         model.set_slow_speed(slow);
@@ -114,12 +146,12 @@ struct BoundTorsionalString {
 
 private:
     /// What the C++ constructor does not check: a survey that ends above the bit, a treatment without a bit.
-    static const DrillString& checked(const DrillString& s, const InclinationSurvey& survey, Treatment t,
+    static const DrillString& checked(const DrillString& s, const std::optional<Survey>& survey, Treatment t,
                                       const TorsionalStringParams& p, std::size_t) {
-        if (!survey.measured_depth.empty() && survey.measured_depth.back() < s.length()) {
+        if (survey && survey->last_depth() < s.length()) {
             const std::string rule = "reaching the bit (its last measured depth >= the string's length, " +
                                      format_double(s.length()) + " m; last given)";
-            detail::reject(name, "survey", rule.c_str(), survey.measured_depth.back());
+            detail::reject(name, "survey", rule.c_str(), survey->last_depth());
         }
         if (t == Treatment::mixed && !(p.weight_on_bit > 0.0))
             throw InvalidParameter("treatment", std::string(name) + ": treatment 'mixed' locates the bit's stick "
@@ -129,8 +161,9 @@ private:
     }
 };
 
-py::object survey_to_python(const InclinationSurvey& s) {
-    if (s.empty()) return py::none();
+py::object survey_to_python(const GivenSurvey& s) {
+    if (!s.as_pair) return s.survey ? py::cast(*s.survey) : py::object(py::none());
+    if (s.measured_depth.empty()) return py::none();
     return py::make_tuple(py::cast(s.measured_depth), py::cast(s.inclination));
 }
 
@@ -154,7 +187,7 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
     TorsionalStringParams p{};
     std::size_t used = read_field_keywords(p, kwargs, fields, name);
     long elements = default_elements;
-    InclinationSurvey survey;
+    GivenSurvey survey;
     std::optional<std::vector<double>> radius;
     std::optional<NavarroLopezBit> bit;
     Treatment treatment = Treatment::captured;
@@ -237,8 +270,9 @@ string : DrillString
 elements : int = 200
     N >= 1: N + 1 nodes.
 survey : (measured_depth, inclination) or Survey, optional
-    Inclination [rad] against measured depth [m], linear in between; it must reach the bit. Default: a straight
-    well of `inclination`.
+    The well's inclination at each measured depth (Survey.inclination_at): an fs.Survey (minimum curvature, its
+    azimuths count), or (measured_depth [m], inclination [rad]), a well in one vertical plane, linear in between.
+    It must reach the bit. Default: a straight well of `inclination`.
 contact_radius : sequence of float, optional
     r_o per section [m]; default each section's OD / 2.
 bit : NavarroLopezBit, optional
@@ -275,6 +309,12 @@ py::object register_torsional_string(py::module_& m) {
     cls.def_property_readonly("string", [](const BoundTorsionalString& r) { return r.string; }, "The DrillString.")
         .def_property_readonly("elements", [](const BoundTorsionalString& r) { return r.elements; }, "N.")
         .def_property_readonly("nodes", [](const BoundTorsionalString& r) { return r.model.nodes(); }, "N + 1.")
+        .def_property_readonly("contact_count", [](const BoundTorsionalString& r) { return r.model.contact_count(); },
+                               "Wall contacts (nodes with a static bound > 0; on bottom node N's is the bit's): what "
+                               "a run's Result.mode counts at rest, as a StringRig's does.")
+        .def_property_readonly("contact_nodes",
+                               [](const BoundTorsionalString& r) { return r.model.wall_contact_nodes(); },
+                               "The nodes of the wall contacts, top down (a StringRig's contact_nodes).")
         .def_property_readonly("survey", [](const BoundTorsionalString& r) { return survey_to_python(r.survey); },
                                "(measured_depth [m], inclination [rad]) as given, or None (a straight well).")
         .def_property_readonly("contact_radius",
@@ -360,7 +400,12 @@ py::object register_torsional_string(py::module_& m) {
         py::dict all;
         for (const auto& item : field_keywords(c.params, fields)) all[item.first] = item.second;
         all["elements"] = 1000;
-        all["survey"] = survey_to_python(c.survey);
+        std::vector<double> md, inc;  // Well B's survey as (measured_depth, inclination), as it has always been given
+        for (const SurveyStation& st : c.survey.stations()) {
+            md.push_back(st.measured_depth);
+            inc.push_back(st.inclination);
+        }
+        all["survey"] = py::make_tuple(py::cast(md), py::cast(inc));
         all["contact_radius"] = py::cast(c.contact_radius);
         all["slow_speed"] = 1.5;  // the stuck fraction as A&S's code counts it
         for (auto item : kwargs) all[item.first] = item.second;  // the caller's overrides

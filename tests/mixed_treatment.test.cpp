@@ -8,11 +8,14 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "catch.hpp"
 #include "frictionsim/string/string_rig.hpp"
 #include "frictionsim/string/torsional_string.hpp"
+#include "frictionsim/string/treatment.hpp"
+#include "frictionsim/string/exact_string.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/simulate.hpp"
 #include "frictionsim/eigen/moreau_jean_events.hpp"
@@ -22,23 +25,8 @@ using namespace frictionsim;
 
 namespace {
 
-/// The bit of TorsionalString's node N for StringRig: NavarroLopezBit plus node N's Coulomb wall, one contact (both
-/// act on the bit's dof, so their bounds add), as bit.hpp lets a drilling code adapt its own bit law.
-struct BitAndWall {
-    static constexpr const char* name = "BitAndWall";
-    static constexpr bool has_stick = true;
-    static constexpr std::size_t state_count = 0;
-    static constexpr bool touches_rock = true;
-    NavarroLopezBit law;
-    double weight = 0.0, wall_static = 0.0, wall_kinetic = 0.0;
-    double weight_on_bit() const { return weight; }
-    double static_limit(double w) const { return law.static_limit(w) + wall_static; }
-    double slip_force(double v, double w, int dir) const { return law.slip_force(v, w, dir) + dir * wall_kinetic; }
-    double slip_slope(double v, double w, int dir) const { return law.slip_slope(v, w, dir); }
-    double karnopp_band() const { return 0.0; }
-};
-
-using Rig = StringRig<Coulomb, BitAndWall>;
+/// The same string on the event-driven engine: string/exact_string.hpp (its bit with node N's wall, one contact).
+using Rig = ExactStringOnBottom;
 
 /// 1000 m of 5" pipe, vertical to 200 m then building to 60 degrees at 500 m (node 0, the top drive's, has no wall
 /// friction: StringRig has none there), Coulomb walls mu_s = `mu`, kinetic 2/3 of it, at every other node, a 300 kg
@@ -48,7 +36,7 @@ struct Case {
     static constexpr double weight = 6e4;
     PipeSection pipe;
     TorsionalStringParams params;
-    InclinationSurvey survey;
+    Survey survey{{{0.0, 0.0, 0.0}, {200.0, 0.0, 0.0}, {500.0, pi / 3.0, 0.0}}};
     std::size_t elements;
 
     Case(std::size_t n, double mu) : elements(n) {
@@ -62,34 +50,11 @@ struct Case {
         params.kinetic_ratio = 2.0 / 3.0;
         params.bha_inertia = 40.0;
         params.weight_on_bit = weight;
-        survey.measured_depth = {0.0, 200.0, 500.0};
-        survey.inclination = {0.0, 0.0, pi / 3.0};
     }
     TorsionalString string() const { return TorsionalString(DrillString({pipe}), params, elements, survey); }
-    /// The same physics on the event-driven engine: normal forces such that mu_s N_i r_i is the string's bound.
-    Rig rig(const TorsionalString& ts) const {
-        StringRigParams p;
-        p.top_drive_inertia = params.top_drive_inertia;
-        p.proportional_gain = params.proportional_gain;
-        p.integral_gain = params.integral_gain;
-        p.surface_speed = params.speed_setpoint;
-        p.torque_limit = 1e12;  // never reached: TorsionalString's PI is unlimited
-        p.end_inertia = params.bha_inertia;
-        p.damping_time = 0.0;
-        StringRigSetup s;
-        s.elements = elements;
-        const double mu_s = params.friction_coefficient, radius = pipe.outer_diameter / 2.0;
-        const std::vector<double>& bound = ts.static_friction_torque();
-        s.wall_contacts = mu_s > 0.0;
-        for (std::size_t i = 1; i < elements && s.wall_contacts; ++i)
-            if (bound[i] > 0.0) {  // as the string: no contact without friction (the vertical top)
-                s.contact_nodes.push_back(i);
-                s.normal_forces.push_back(bound[i] / (mu_s * radius));
-            }
-        BitAndWall bit{ts.bit_law(), weight, bound.back(), params.kinetic_ratio * bound.back()};
-        return Rig(DrillString({pipe}), p, s,
-                   Coulomb(params.kinetic_ratio * std::max(mu_s, 1e-3), std::max(mu_s, 1e-3)), bit);
-    }
+    /// The same physics on the event-driven engine (exact_string.hpp: normal forces such that mu_s N_i r_i is the
+    /// string's bound).
+    Rig rig(const TorsionalString& ts) const { return exact_string_on_bottom(ts); }
 };
 
 std::vector<double> grid(double t_end, double dt) {
@@ -263,6 +228,100 @@ TEST_CASE("mixed treatment: all-captured and mixed converge to the event-driven 
     CHECK(mixed_speed >= 0.8);
     for (std::size_t i = 0; i < k.steps.size(); ++i) CHECK(k.exact_switch[i] < k.captured_switch[i]);
     CHECK(k.exact_switch.back() < 2e-5);  // the bit's switches to 20 us at h = 31 us
+}
+
+TEST_CASE("one string, two treatments: StringRig exact and the captured string agree as h -> 0 (same damping, "
+          "drive, walls; the same mode column)", "[mixed][treatments]") {
+    // 1000 m of 5" pipe in Case's well, off bottom, Coulomb walls mu_s 0.3 (kinetic 0.6 of it) at every node below
+    // the vertical top, the PI stepped to 4 rad/s, and StringRig's element damping beta k_e in both models: all walls
+    // stuck at first, the string breaks off, overshoots and settles to sliding. The exact model locates every wall's
+    // release (Dormand-Prince, 1e-10); the captured one is Moreau-Jean at step h.
+    const std::size_t n = 16;
+    const double beta = 2e-3, mu = 0.3, f_rat = 0.6;
+    Case c(n, mu);
+    c.params.weight_on_bit = 0.0;
+    c.params.kinetic_ratio = f_rat;
+    c.params.damping_time = beta;
+    c.params.gravity = 9.80665;  // StringRig's
+    c.params.mud_density = 1200.0;
+    const TorsionalString ts = c.string();
+    const ExactString rig = exact_string(ts);  // the exact treatment of the same string
+    const StringRigParams& p = rig.params();
+    CHECK(rig.contact_nodes() == ts.wall_contact_nodes());  // node 0 is vertical: no wall there in either model
+
+    CHECK(p.damping_time == beta);
+    // the same damping: C's element entries are beta k_e, as the rig's dampers
+    const LinearMechanicalSystem sys = ts.system();
+    for (std::size_t e = 0; e < n; ++e) {
+        const auto a = static_cast<Eigen::Index>(e);
+        CHECK(-sys.damping.coeff(a + 1, a) == Approx(beta * rig.lumped().torsional_stiffness[e]).epsilon(1e-14));
+    }
+    REQUIRE(ts.contact_count() == rig.contact_count());
+
+    const double t_end = 30.0;
+    SolverOptions o;
+    o.rtol = o.atol = 1e-10;
+    o.output_times = grid(t_end, 0.01);
+    const Result ref = simulate(rig, t_end, o);
+    REQUIRE(ref.completed);
+    const auto motor = [&](std::size_t row) {  // PiTopDrive's k_p e + k_i int e, the limit never reached
+        return p.proportional_gain * (p.surface_speed - ref.state(row, rig.omega(0))) +
+               p.integral_gain * ref.state(row, rig.drive_state(0));
+    };
+    double ref_peak = 0.0;
+    for (std::size_t row = 0; row < ref.rows(); ++row) ref_peak = std::max(ref_peak, ref.state(row, rig.omega(n)));
+    CHECK(ref.mode.front() == static_cast<int>(rig.contact_count()));  // all stuck, then all sliding
+    CHECK(ref.mode.back() == 0);
+
+    struct Run {
+        double peak = 0.0, speed_rms = 0.0, torque_rms = 0.0;
+        std::size_t mode_rows_equal = 0;
+    };
+    const auto captured = [&](const TorsionalString& model, double h) {
+        SolverOptions m;
+        m.method = Method::moreau_jean;
+        m.step = h;
+        m.output_times = o.output_times;
+        const Result r = simulate(model, t_end, m);
+        REQUIRE(r.rows() == ref.rows());
+        Run out;
+        const std::size_t bit = r.column("bit_speed"), torque = r.column("motor_torque");
+        for (std::size_t row = 0; row < r.rows(); ++row) {
+            out.peak = std::max(out.peak, r.state(row, bit));
+            const double dw = r.state(row, bit) - ref.state(row, rig.omega(n));
+            const double dt = r.state(row, torque) - motor(row);
+            out.speed_rms += dw * dw;
+            out.torque_rms += dt * dt;
+            out.mode_rows_equal += r.mode[row] == ref.mode[row] ? 1 : 0;
+        }
+        out.speed_rms = std::sqrt(out.speed_rms / static_cast<double>(r.rows()));
+        out.torque_rms = std::sqrt(out.torque_rms / static_cast<double>(r.rows()));
+        return out;
+    };
+    const std::vector<double> steps{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4};
+    std::vector<double> speed_error, torque_error;
+    Run last;
+    for (double h : steps) {
+        last = captured(ts, h);
+        speed_error.push_back(last.speed_rms);
+        torque_error.push_back(last.torque_rms);
+    }
+    const double speed_order = fitted_order(steps, speed_error), torque_order = fitted_order(steps, torque_error);
+    INFO("bit peak " << ref_peak << " rad/s; captured at h = 0.25 ms " << last.peak << "; RMS bit speed error "
+         << speed_error.front() << " -> " << speed_error.back() << " (order " << speed_order << "), motor torque "
+         << torque_error.front() << " -> " << torque_error.back() << " N m (order " << torque_order << ")");
+    // measured: speed order 1.37, torque order 1.34 (first order at least, as a captured Coulomb contact is);
+    // the bit's peak within 1e-5 relative at h = 0.25 ms
+    CHECK(speed_order > 1.0);
+    CHECK(torque_order > 0.9);
+    CHECK(last.peak == Approx(ref_peak).epsilon(1e-5));
+    CHECK(speed_error.back() < 2e-5);  // rad/s, against a peak of 6.8
+    CHECK(last.mode_rows_equal == ref.rows());  // the same stuck-wall count on every row
+    // and the damping is what makes them agree: without beta the captured string's peak is off by far more
+    TorsionalStringParams undamped = c.params;
+    undamped.damping_time = 0.0;
+    const TorsionalString plain(DrillString({c.pipe}), undamped, n, c.survey);
+    CHECK(std::abs(captured(plain, 2.5e-4).peak - ref_peak) > 1e3 * std::abs(last.peak - ref_peak));
 }
 
 TEST_CASE("mixed treatment: without wall friction the mixed model is second order, the captured bit first",
@@ -645,9 +704,13 @@ TEST_CASE("one entry point: simulate(TorsionalString) equals the earlier run loo
             CHECK(switch_times(r, true) == legacy.bit_stick_times);
             CHECK(switch_times(r, false) == legacy.bit_release_times);
         }
-        // the mode column is the bit's: at rest exactly when its speed is 0
-        for (std::size_t row = 0; row < r.rows(); ++row)
-            if (r.mode[row] == 0) CHECK(r.state(row, r.column("bit_speed")) == 0.0);
+        // the mode column is StringRig's: the wall contacts at rest, each also counted in stuck_fraction
+        const double nodes = static_cast<double>(s.model.nodes());
+        for (std::size_t row = 0; row < r.rows(); ++row) {
+            CHECK(r.mode[row] >= 0);
+            CHECK(static_cast<std::size_t>(r.mode[row]) <= s.model.contact_count());
+            CHECK(r.mode[row] <= std::lround(r.state(row, r.column("stuck_fraction")) * nodes));
+        }
         // the earlier interface is a thin wrapper over the same loop: its rows at k * output_interval
         const TorsionalStringRun wrapped = s.model.simulate(s.run);
         REQUIRE(wrapped.time.size() == legacy.time.size());
@@ -914,4 +977,20 @@ TEST_CASE("one entry point: a user's own time-stepping model; non-finite states 
         CHECK(e.partial()->rows() == 4);
         CHECK(e.time_reached() == Approx(0.3).epsilon(1e-14));
     }
+}
+
+TEST_CASE("one string, three treatments: the automatic choice follows the measured rule", "[mixed][treatments]") {
+    // bench/mixed.bench.cpp's points: exact cheapest at 10 contacts, mixed at 100 (bit on bottom), captured at 1000
+    CHECK(automatic_treatment(10, true) == StringTreatment::exact);
+    CHECK(automatic_treatment(10, false) == StringTreatment::exact);
+    CHECK(automatic_treatment(100, true) == StringTreatment::mixed);
+    CHECK(automatic_treatment(100, false) == StringTreatment::captured);  // off bottom mixed is captured
+    CHECK(automatic_treatment(1000, true) == StringTreatment::captured);
+    CHECK(automatic_treatment(1000, false) == StringTreatment::captured);
+    // the crossovers between the measured points, at their geometric middles
+    CHECK(automatic_treatment(exact_treatment_up_to, true) == StringTreatment::exact);
+    CHECK(automatic_treatment(exact_treatment_up_to + 1, true) == StringTreatment::mixed);
+    CHECK(automatic_treatment(mixed_treatment_up_to, true) == StringTreatment::mixed);
+    CHECK(automatic_treatment(mixed_treatment_up_to + 1, true) == StringTreatment::captured);
+    CHECK(std::string(treatment_name(StringTreatment::mixed)) == "mixed");
 }

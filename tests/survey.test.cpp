@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <frictionsim/wells/survey.hpp>
+#include <frictionsim/survey.hpp>
 
 #include "catch.hpp"
 #include "rejection.hpp"
@@ -205,4 +205,30 @@ TEST_CASE("survey: bad stations are refused naming the station and the field", "
     const Survey three({{0.0, 0.0, 0.0}, {100.0, 0.1, 0.0}, {200.0, 0.2, 0.0}});
     CHECK(rejected_parameter([&] { (void)three.at(150.0, 0); }) == "measured_depth");
     CHECK(three.at(150.0, 1).inclination == Approx(0.15).epsilon(1e-12));
+}
+
+TEST_CASE("survey: inclination along the string, linear on a course in a vertical plane, the arc's elsewhere",
+          "[survey]") {
+    // vertical to 500 m, building to 60 deg at 1600 m, held to 4000 m (A&S's Well B), all at azimuth 0
+    const double build = pi / 3.0;
+    const Survey well({{0.0, 0.0, 0.0}, {500.0, 0.0, 0.0}, {1600.0, build, 0.0}, {4000.0, build, 0.0}});
+    CHECK(well.inclination_at(250.0) == 0.0);
+    const double md = 1050.0, s = (md - 500.0) / 1100.0;
+    CHECK(well.inclination_at(md) == s * build);  // linear, computed so: exact
+    CHECK(well.inclination_at(md) == Approx(well.at(md).inclination).margin(1e-14));  // the arc's, rounding aside
+    CHECK(well.inclination_at(3000.0) == build);
+    // beyond the ends: held at the end stations' (the string goes on straight)
+    CHECK(well.inclination_at(-10.0) == 0.0);
+    CHECK(well.inclination_at(5000.0) == build);
+    // a course that also turns in azimuth: not linear, the arc's inclination (at(): slerp of the tangent)
+    const Survey turn({{0.0, pi / 4.0, 0.0}, {300.0, pi / 2.0, pi / 2.0}});
+    for (double d : {30.0, 150.0, 270.0}) {
+        const double linear = pi / 4.0 + d / 300.0 * pi / 4.0;
+        CHECK(turn.inclination_at(d) == Approx(turn.at(d).inclination).margin(1e-14));
+        CHECK(std::abs(turn.inclination_at(d) - linear) > 1e-3);
+    }
+    // one end vertical: the course lies in the vertical plane of the other's azimuth, linear again
+    const Survey kick({{100.0, 0.0, 0.0}, {400.0, pi / 6.0, 1.0}});
+    CHECK(kick.inclination_at(250.0) == Approx(kick.at(250.0).inclination).margin(1e-14));
+    CHECK(kick.inclination_at(250.0) == 0.5 * pi / 6.0);
 }

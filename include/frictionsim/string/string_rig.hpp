@@ -573,20 +573,7 @@ private:
             // S = tau_i - tau_{i-1} (+ T_m): d/dth and d/dw of the neighbouring elements
             if (torque_share != 0.0) {
                 const double f = torque_share / inertia_[i];
-                if (i < n) {
-                    const double k = lumped_.torsional_stiffness[i];
-                    add(omega(i), theta(i + 1), f * k);
-                    add(omega(i), theta(i), -f * k);
-                    add(omega(i), omega(i + 1), f * beta * k);
-                    add(omega(i), omega(i), -f * beta * k);
-                }
-                if (i > 0) {
-                    const double k = lumped_.torsional_stiffness[i - 1];
-                    add(omega(i), theta(i - 1), f * k);
-                    add(omega(i), theta(i), -f * k);
-                    add(omega(i), omega(i - 1), f * beta * k);
-                    add(omega(i), omega(i), -f * beta * k);
-                }
+                add_element_partials(add, i, f, beta, lumped_.torsional_stiffness, &StringRig::theta, &StringRig::omega);
                 if (i == 0 && !drive_.holds_speed()) {  // T_m's partials
                     std::array<double, kMaxDriveStates> d_state{};
                     double d_speed = 0.0;
@@ -596,24 +583,28 @@ private:
                         if (d_state[j] != 0.0) add(omega(0), drive_state(j), f * d_state[j]);
                 }
             }
-            if (axial_ && axial_share != 0.0) {
-                const double f = axial_share / mass_[i];
-                if (i < n) {
-                    const double k = lumped_.axial_stiffness[i];
-                    add(speed(i), position(i + 1), f * k);
-                    add(speed(i), position(i), -f * k);
-                    add(speed(i), speed(i + 1), f * beta * k);
-                    add(speed(i), speed(i), -f * beta * k);
-                }
-                if (i > 0) {
-                    const double k = lumped_.axial_stiffness[i - 1];
-                    add(speed(i), position(i - 1), f * k);
-                    add(speed(i), position(i), -f * k);
-                    add(speed(i), speed(i - 1), f * beta * k);
-                    add(speed(i), speed(i), -f * beta * k);
-                }
-            }
+            if (axial_ && axial_share != 0.0)
+                add_element_partials(add, i, axial_share / mass_[i], beta, lumped_.axial_stiffness,
+                                     &StringRig::position, &StringRig::speed);
         }
+    }
+
+    /// The partials of node i's rate row (`rate`: omega or v) through its two elements, k_e (x_{e+1} - x_e) +
+    /// beta k_e (r_{e+1} - r_e) with x the position (`position`: theta or u), each scaled by f = share / inertia:
+    /// the torsional and the axial rows are the same chain, one stiffness vector each.
+    template <class Add>
+    void add_element_partials(Add& add, std::size_t i, double f, double beta, const std::vector<double>& stiffness,
+                              std::size_t (StringRig::*position)(std::size_t) const,
+                              std::size_t (StringRig::*rate)(std::size_t) const) const {
+        const std::size_t row = (this->*rate)(i);
+        const auto element = [&](std::size_t other, double k) {
+            add(row, (this->*position)(other), f * k);
+            add(row, (this->*position)(i), -f * k);
+            add(row, (this->*rate)(other), f * beta * k);
+            add(row, row, -f * beta * k);
+        };
+        if (i < setup_.elements) element(i + 1, stiffness[i]);
+        if (i > 0) element(i - 1, stiffness[i - 1]);
     }
 
 public:

@@ -4,7 +4,8 @@
 // t_end, SolverOptions) runs it (Method::moreau_jean or explicit_projection, solve/time_stepping.hpp's loop) and
 // returns the same Result as the rigs.
 //   string:    node inertias and element springs from DrillString::lump(N); viscous damping k_t rho J omega per
-//              unit length (A&S eq 3), i.e. k_t times each node's string inertia;
+//              unit length (A&S eq 3), i.e. k_t times each node's string inertia, and/or StringRig's element damping
+//              beta k_e (w_{e+1} - w_e) (damping_time): the same string physics as the event-driven StringRig;
 //   wall:      at each node a Coulomb contact, static torque bound = the integral over the node's half elements of
 //              F_c(x) = mu sin(inc(x)) w(x) r_o(x) (A&S eq 6; w the buoyed weight per length, g rho A (1 - rho_mud
 //              / rho), r_o the contact radius), kinetic = f_rat times it; A&S eq 4 keeps the static level while
@@ -31,6 +32,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +42,7 @@
 
 #include "../detail/constants.hpp"
 #include "../parameters.hpp"
+#include "../survey.hpp"
 #include "../eigen/moreau_jean.hpp"
 #include "../eigen/moreau_jean_events.hpp"
 #include "../solve/time_stepping.hpp"
@@ -61,15 +64,16 @@ struct TorsionalStringParams {
     double inclination = 60.0 * pi / 180.0;      ///< rad, of a straight inclined well (when no survey is given)
     double mud_density = 0.0;                    ///< kg/m^3: buoyancy; 0 the dry weight, as A&S's code
     double damping_rate = 0.0;                   ///< k_t, 1/s: damping torque k_t rho J omega per unit length
+    double damping_time = 0.0;                   ///< beta, s: element damping beta k_e (StringRig's structural)
     double bha_inertia = 0.0;                    ///< kg m^2 lumped on the bit node, beyond the sections'
     double bit_torque = 0.0;                     ///< N m against the rotation at the bit; off bottom 0
     double gravity = 9.81;                       ///< m/s^2
     double weight_on_bit = 0.0;                  ///< W, N: > 0 puts the velocity-weakening bit on bottom
 
-    static constexpr std::array<Field<TorsionalStringParams>, 16> fields();
+    static constexpr std::array<Field<TorsionalStringParams>, 17> fields();
 };
 
-inline constexpr std::array<Field<TorsionalStringParams>, 16> TorsionalStringParams::fields() {
+inline constexpr std::array<Field<TorsionalStringParams>, 17> TorsionalStringParams::fields() {
     using P = TorsionalStringParams;
     return {{
         {"top_drive_inertia", "I_TD", "kg m^2", Rule::positive(), &P::top_drive_inertia, "Top drive inertia."},
@@ -91,6 +95,8 @@ inline constexpr std::array<Field<TorsionalStringParams>, 16> TorsionalStringPar
         {"mud_density", "rho_mud", "kg/m^3", Rule::non_negative(), &P::mud_density, "Mud density (buoyancy)."},
         {"damping_rate", "k_t", "1/s", Rule::non_negative(), &P::damping_rate,
          "Viscous damping: torque k_t rho J omega per unit length."},
+        {"damping_time", "beta", "s", Rule::non_negative(), &P::damping_time,
+         "Structural damping: each element's damper is beta times its stiffness (StringRig's damping_time)."},
         {"bha_inertia", "J_BHA", "kg m^2", Rule::non_negative(), &P::bha_inertia, "Inertia lumped on the bit."},
         {"bit_torque", "T_b", "N m", Rule::non_negative(), &P::bit_torque, "Torque on bit; off bottom 0."},
         {"gravity", "g", "m/s^2", Rule::positive(), &P::gravity, "Acceleration of gravity."},
@@ -98,21 +104,6 @@ inline constexpr std::array<Field<TorsionalStringParams>, 16> TorsionalStringPar
          "Weight on bit of the velocity-weakening bit at node N; 0: off bottom."},
     }};
 }
-
-/// Inclination [rad] against measured depth [m], linear in between and constant beyond the ends.
-struct InclinationSurvey {
-    std::vector<double> measured_depth, inclination;
-
-    bool empty() const { return measured_depth.empty(); }
-    double at(double md) const {
-        if (md <= measured_depth.front()) return inclination.front();
-        if (md >= measured_depth.back()) return inclination.back();
-        const std::size_t i = static_cast<std::size_t>(
-            std::upper_bound(measured_depth.begin(), measured_depth.end(), md) - measured_depth.begin());
-        const double a = (md - measured_depth[i - 1]) / (measured_depth[i] - measured_depth[i - 1]);
-        return inclination[i - 1] + a * (inclination[i] - inclination[i - 1]);
-    }
-};
 
 /// What a run records every output interval.
 struct TorsionalStringRun {
@@ -149,10 +140,11 @@ struct TorsionalStringRunOptions {
 
 class TorsionalString {
 public:
-    /// `contact_radius`: one per section (m), empty: each section's OD / 2. `survey`: empty: params.inclination.
+    /// `contact_radius`: one per section (m), empty: each section's OD / 2. `survey`: the well's (its inclination at
+    /// each measured depth, Survey::inclination_at); none: the straight well of params.inclination.
     /// `bit`: the law of the on-bottom bit (used when params.weight_on_bit > 0).
     TorsionalString(DrillString string, TorsionalStringParams params, std::size_t elements,
-                    InclinationSurvey survey = {}, std::vector<double> contact_radius = {},
+                    std::optional<Survey> survey = std::nullopt, std::vector<double> contact_radius = {},
                     NavarroLopezBit bit = NavarroLopezBit{})
         : string_(std::move(string)), p_(params), survey_(std::move(survey)), radius_(std::move(contact_radius)),
           bit_(std::move(bit)) {
@@ -169,19 +161,6 @@ public:
                 detail::reject("TorsionalString", "mud_density",
                                "below every section's density (the string would float: no wall friction)",
                                p_.mud_density);
-        if (!survey_.empty()) {
-            if (survey_.inclination.size() != survey_.measured_depth.size())
-                detail::reject("TorsionalString", "survey.inclination", "one per survey.measured_depth (count given)",
-                               static_cast<double>(survey_.inclination.size()));
-            for (std::size_t i = 0; i < survey_.measured_depth.size(); ++i) {
-                detail::require_finite("TorsionalString", "survey.measured_depth", survey_.measured_depth[i]);
-                if (i > 0 && !(survey_.measured_depth[i] > survey_.measured_depth[i - 1]))
-                    detail::reject("TorsionalString", "survey.measured_depth", "strictly increasing",
-                                   survey_.measured_depth[i]);
-                if (!(survey_.inclination[i] >= 0.0 && survey_.inclination[i] <= pi))
-                    detail::reject("TorsionalString", "survey.inclination", "in [0, pi] rad", survey_.inclination[i]);
-            }
-        }
         lumped_ = string_.lump(elements);
         const std::size_t n = elements;
         const double dx = lumped_.element_length;
@@ -191,6 +170,8 @@ public:
             static_torque_[e] += half;
             static_torque_[e + 1] += half;
         }
+        for (std::size_t i = 0; i <= n; ++i)  // the wall contacts: nodes with friction (on bottom node N is the bit's)
+            if (static_torque_[i] > 0.0 && !(bit_on_bottom() && i == n)) wall_nodes_.push_back(i);
     }
 
     const TorsionalStringParams& params() const { return p_; }
@@ -199,6 +180,10 @@ public:
     std::size_t nodes() const { return lumped_.node_inertia.size(); }
     /// Static torque bound of each node's wall contact [N m] (kinetic: kinetic_ratio times it).
     const std::vector<double>& static_friction_torque() const { return static_torque_; }
+    /// The nodes with a wall contact (a static bound > 0; on bottom node N's is the bit's, not counted), top down.
+    const std::vector<std::size_t>& wall_contact_nodes() const { return wall_nodes_; }
+    /// How many wall contacts the string has: the Result's mode column counts those at rest (StringRig's rule).
+    std::size_t contact_count() const { return wall_nodes_.size(); }
     const NavarroLopezBit& bit_law() const { return bit_; }
     bool bit_on_bottom() const { return p_.weight_on_bit > 0.0; }
     /// Node N's static bound with the bit on bottom [N m]: its wall's plus R_b W mu_sb.
@@ -220,7 +205,7 @@ public:
     /// F_c(x) of A&S eq 6 [N m/m]: mu sin(inc) g rho A (1 - rho_mud / rho) r_o at measured depth x.
     double wall_friction_per_length(double x) const {
         const auto [s, i] = section_at(x);
-        const double inc = survey_.empty() ? p_.inclination : survey_.at(x);
+        const double inc = survey_ ? survey_->inclination_at(x) : p_.inclination;
         const double buoyed = p_.gravity * s->mass_per_length() * (1.0 - p_.mud_density / s->density);
         return p_.friction_coefficient * std::sin(inc) * buoyed * radius_[i];
     }
@@ -305,6 +290,13 @@ public:
             k.emplace_back(e + 1, e + 1, ke);
             k.emplace_back(e, e + 1, -ke);
             k.emplace_back(e + 1, e, -ke);
+            if (p_.damping_time > 0.0) {  // the element's damper beta k_e, as StringRig's
+                const double ce = p_.damping_time * ke;
+                c.emplace_back(e, e, ce);
+                c.emplace_back(e + 1, e + 1, ce);
+                c.emplace_back(e, e + 1, -ce);
+                c.emplace_back(e + 1, e, -ce);
+            }
         }
         const bool sampled = held_motor_torque != nullptr;
         if (!sampled) {
@@ -348,7 +340,8 @@ public:
     // simulate(model, t_end, options) (simulate.hpp, solve/time_stepping.hpp): a time-stepping model, run from rest,
     // untwisted, all contacts stuck, by Method::moreau_jean (or explicit_projection). Columns: bit_speed,
     // top_drive_speed [rad/s], motor_torque [N m], stuck_fraction [-]; friction_force: node N's contact torque (the
-    // bit's with its wall's) of the step; mode: the bit's, 0 stick, +1 / -1 slip forward / backward.
+    // bit's with its wall's) of the step; mode: the wall contacts at rest (StringRig's mode column: a count out of
+    // contact_count()); events: the bit's switches, named by its modes 0 stick, +1 / -1 slip forward / backward.
     static constexpr bool time_stepping = true;
     class Stepper;
 
@@ -413,8 +406,9 @@ private:
             top += s.length;
             if (top > a && top < b) cuts.push_back(top);
         }
-        for (double md : survey_.measured_depth)
-            if (md > a && md < b) cuts.push_back(md);
+        if (survey_)
+            for (const SurveyStation& st : survey_->stations())
+                if (st.measured_depth > a && st.measured_depth < b) cuts.push_back(st.measured_depth);
         std::sort(cuts.begin(), cuts.end());
         const double g = std::sqrt(0.6);
         double sum = 0.0;
@@ -432,10 +426,11 @@ private:
 
     DrillString string_;
     TorsionalStringParams p_;
-    InclinationSurvey survey_;
+    std::optional<Survey> survey_;
     std::vector<double> radius_;
     LumpedString lumped_;
     std::vector<double> static_torque_;
+    std::vector<std::size_t> wall_nodes_;
     NavarroLopezBit bit_;
     BitTreatment treatment_ = BitTreatment::captured;
     double switch_tolerance_ = 1e-10;
@@ -471,7 +466,6 @@ public:
             events_driver_ = std::make_unique<MoreauJeanEvents<LumpedFriction>>(
                 model.system(nullptr, false), std::vector<LumpedFriction>{model.bit_element()}, std::move(e), zero,
                 zero, setup.t_start);
-            mode_ = events_driver_->modes()[0];
         } else {
             mj_ = std::make_unique<MoreauJean>(model.system(sampled_ ? &control_->held : nullptr), std::move(o), zero,
                                                zero, setup.t_start);
@@ -495,8 +489,6 @@ public:
             events_driver_->step(left < h_ * (1.0 + 1e-9) ? left : h_);
             const std::vector<LumpedEvent>& log = events_driver_->events();
             for (std::size_t k = seen; k < log.size(); ++k) add_event(log[k].time, log[k].mode_before, log[k].mode_after);
-            mode_start_ = mode_;
-            mode_ = events_driver_->modes()[0];
             return;
         }
         kept_ = keep_start;
@@ -558,8 +550,12 @@ public:
         const double slow = ts_.slow_speed();
         for (Eigen::Index i = 0; i < n_; ++i) stuck += (slow > 0.0 ? std::abs((*v)(i)) < slow : (*v)(i) == 0.0) ? 1 : 0;
         out[3] = static_cast<double>(stuck) / static_cast<double>(n_);
-        if (exact_) return a < 1.0 ? mode_start_ : mode_;
-        return sign(out[0]);
+        // the mode column as StringRig's: the wall contacts at rest (captured: exactly, v == 0); the bit's own
+        // modes are in the events
+        int walls_at_rest = 0;
+        for (std::size_t i : ts_.wall_contact_nodes())
+            walls_at_rest += (*v)(static_cast<Eigen::Index>(i)) == 0.0 ? 1 : 0;
+        return walls_at_rest;
     }
 
     double friction_force() const {
@@ -626,7 +622,6 @@ private:
     std::unique_ptr<MoreauJean> mj_;
     std::unique_ptr<MoreauJeanEvents<LumpedFriction>> events_driver_;
     Start start_;
-    int mode_ = 0, mode_start_ = 0;
     std::vector<Event> events_;
     mutable Eigen::VectorXd scratch_, interpolated_q_, interpolated_v_;
 };
@@ -695,7 +690,7 @@ enum class CollarWaveSpeed {
 struct WellBCase {
     DrillString string;
     TorsionalStringParams params;
-    InclinationSurvey survey;
+    Survey survey;
     std::vector<double> contact_radius;
 };
 
@@ -731,10 +726,10 @@ inline WellBCase aarsnes_shor_well_b(CollarPolarMoment collar, CollarWaveSpeed w
     p.control_period = 0.01;
     p.stick_band_speed = 1.5;
     p.damping_rate = 2.0 * 50.0 * 0.01 / 12.0;
-    WellBCase out{DrillString({pipe, bha}), p, InclinationSurvey{}, {pipe.outer_diameter / 2.0, radius}};
-    out.survey.measured_depth = {0.0, 500.0, 1600.0, 4000.0};
-    out.survey.inclination = {0.0, 0.0, 60.0 * pi / 180.0, 60.0 * pi / 180.0};
-    return out;
+    const double build = 60.0 * pi / 180.0;
+    return WellBCase{DrillString({pipe, bha}), p,
+                     Survey({{0.0, 0.0, 0.0}, {500.0, 0.0, 0.0}, {1600.0, build, 0.0}, {4000.0, build, 0.0}}),
+                     {pipe.outer_diameter / 2.0, radius}};
 }
 
 }  // namespace frictionsim

@@ -35,7 +35,7 @@
 #include "oscillator_response.hpp"
 #include "../string/sections.hpp"
 #include "soft_string.hpp"
-#include "survey.hpp"
+#include "../survey.hpp"
 #include "vibration_friction.hpp"
 
 namespace frictionsim {

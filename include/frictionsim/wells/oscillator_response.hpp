@@ -63,7 +63,7 @@
 #include "../string/sections.hpp"
 #include "soft_string.hpp"
 #include "../string/string_rig.hpp"
-#include "survey.hpp"
+#include "../survey.hpp"
 
 namespace frictionsim {
 

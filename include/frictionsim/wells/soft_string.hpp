@@ -59,7 +59,7 @@
 #include "../detail/illinois.hpp"
 #include "../parameters.hpp"
 #include "../string/sections.hpp"
-#include "survey.hpp"
+#include "../survey.hpp"
 
 namespace frictionsim {
 

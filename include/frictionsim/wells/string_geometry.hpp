@@ -19,7 +19,7 @@
 #include "../string/sections.hpp"
 #include "soft_string.hpp"
 #include "../string/string_rig_params.hpp"
-#include "survey.hpp"
+#include "../survey.hpp"
 
 namespace frictionsim {
 

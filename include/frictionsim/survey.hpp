@@ -9,6 +9,8 @@
 // measured depth gets its inclination, azimuth, position and curvature from the same arc: the survey places the
 // nodes of a lumped string on the well.
 // SI inside (m, rad); Survey::from_degrees reads stations whose angles are in degrees.
+// One survey type for the whole library (issue 22): the wells' torque and drag reads positions and curvature from it,
+// the torsional string (string/torsional_string.hpp) its inclination along the string (inclination_at).
 #pragma once
 
 #include <algorithm>
@@ -19,8 +21,8 @@
 #include <utility>
 #include <vector>
 
-#include "../detail/constants.hpp"
-#include "../detail/validate.hpp"
+#include "detail/constants.hpp"
+#include "detail/validate.hpp"
 
 namespace frictionsim {
 
@@ -108,6 +110,24 @@ public:
 
     /// The well at measured depth `md` on the minimum-curvature arc (InvalidParameter outside the survey).
     WellPoint at(double md) const { return at(md, course_of(md)); }
+
+    /// The inclination [rad] at measured depth `md`, held at the end stations' beyond them (a string that starts
+    /// above the first station or reaches below the last continues straight). On a course in a vertical plane
+    /// (equal azimuths, or one end vertical) the tangent turns at a constant rate within that plane, so the
+    /// inclination is linear in md and is computed so (exactly; a well given by inclinations alone is such a well);
+    /// otherwise it is the arc's, from at().
+    double inclination_at(double md) const {
+        if (md <= depths_.front()) return stations_.front().inclination;
+        if (md >= depths_.back()) return stations_.back().inclination;
+        const std::size_t i = static_cast<std::size_t>(std::upper_bound(depths_.begin(), depths_.end(), md) -
+                                                       depths_.begin());
+        const SurveyStation &a = stations_[i - 1], &b = stations_[i];
+        if (a.azimuth == b.azimuth || std::sin(a.inclination) == 0.0 || std::sin(b.inclination) == 0.0) {
+            const double s = (md - a.measured_depth) / (b.measured_depth - a.measured_depth);
+            return a.inclination + s * (b.inclination - a.inclination);
+        }
+        return at(md, i - 1).inclination;
+    }
 
     /// As at(md), on a known course (a caller walking down the well keeps its course index: no search); md must
     /// lie on that course.
