@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     so.step = step;
     for (long k = 0; k <= std::lround(t_end / 0.01); ++k) so.output_times.push_back(0.01 * static_cast<double>(k));
     TorsionalStringRun r;
-    long steps = 0;
+    long steps = 0, solves = 0, switches = 0;
     double best = std::numeric_limits<double>::infinity();
     for (int k = 0; k < repeat; ++k) {
         const double start = cpu_seconds();
@@ -88,10 +88,14 @@ int main(int argc, char** argv) {
                 for (std::size_t i = 0; i < res.t.size(); ++i) out.push_back(res.state(i, c));
             }
             steps = res.stats.steps;
+            solves = res.stats.linear_solves;
+            switches = res.stats.contact_switches;
         } else {
             r = string.simulate(o);
             best = std::min(best, cpu_seconds() - start);
             steps = r.statistics.steps;
+            solves = r.statistics.solves;
+            switches = r.statistics.contact_switches;
         }
     }
 
@@ -131,9 +135,9 @@ int main(int argc, char** argv) {
     }
     std::printf("{\"elements\": %zu, \"step\": %.17g, \"t_end\": %.17g, \"cpu_seconds\": %.9g, \"bit_peak\": %.17g, "
                 "\"period\": %.17g, \"cycles\": %d, \"max_motor_torque\": %.17g, \"min_motor_torque\": %.17g, "
-                "\"stuck_fraction\": %.17g, \"steps\": %ld, \"entry\": \"%s\"}\n",
+                "\"stuck_fraction\": %.17g, \"steps\": %ld, \"solves\": %ld, \"contact_switches\": %ld, \"entry\": \"%s\"}\n",
                 elements, step, t_end, best, cycles ? peak / cycles : 0.0, cycles ? period / cycles : 0.0, cycles,
-                window ? tmax : 0.0, window ? tmin : 0.0, window ? stuck / window : 0.0, steps,
+                window ? tmax : 0.0, window ? tmin : 0.0, window ? stuck / window : 0.0, steps, solves, switches,
                 through_simulate ? "simulate" : "run");
     return 0;
 }

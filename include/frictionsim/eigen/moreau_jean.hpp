@@ -20,6 +20,9 @@
 // Optim. 13, Thm 3.1); static > kinetic (a non-monotone law) keeps Leine's switch model: a contact at rest, or
 // reaching rest within the step, sticks while |r| <= static.
 //
+// The one-step problem's solver is swappable (MoreauJeanOptions::contact_solver, eigen/one_step_contact.hpp: e.g.
+// ProjectedGaussSeidel); the exact active set above is the default.
+//
 // ContactTreatment::projection is the explicit special case used by field codes (e.g. Aarsnes and Shor 2018,
 // torsionalWaveStep.m): symplectic Euler, W = M (lumped, diagonal), so the inclusion decouples per contact and its
 // solution is the predicted force (the one that stops the contact in this step) clipped to the static bound; field
@@ -42,20 +45,9 @@
 #include "../detail/validate.hpp"
 #include "../error.hpp"
 #include "chain_ldlt.hpp"
+#include "one_step_contact.hpp"
 
 namespace frictionsim {
-
-/// A frictional point contact on one degree of freedom (forces in the dof's unit: N, or N m for a rotation).
-/// Optionally velocity-weakening in one step: while |v| < slow_speed (at the step's start: the level is explicit,
-/// the direction and stick implicit) a slipping contact takes slow_bound instead, e.g. Aarsnes and Shor's eq 4
-/// (the static level below omega_c, the kinetic above).
-struct PointContact {
-    std::size_t dof = 0;
-    double static_bound = 0.0;   ///< |r| <= static_bound while stuck (breakaway)
-    double kinetic_bound = 0.0;  ///< |r| = kinetic_bound while slipping, <= static_bound
-    double slow_bound = 0.0;     ///< |r| while slipping slower than slow_speed, <= static_bound
-    double slow_speed = 0.0;     ///< 0: no slow level
-};
 
 /// M v' = f(t) - C v - K q + r over n degrees of freedom. M symmetric positive definite, C and K symmetric
 /// positive semi-definite (a top drive's PI adds its gains to one diagonal entry of each). Their union pattern sets
@@ -73,8 +65,6 @@ enum class ContactTreatment {
     inclusion,   ///< the coupled one-step inclusion solved exactly (active set), implicit theta-method
     projection,  ///< explicit (symplectic Euler, W = M): predicted force clipped inside the stick band
 };
-
-enum class ContactState : signed char { slip_negative = -1, stick = 0, slip_positive = 1 };
 
 /// A contact changed mode at the end of the step that reached `time`.
 struct ContactEvent {
@@ -95,6 +85,9 @@ struct MoreauJeanOptions {
     std::size_t max_events = 10'000'000;  ///< event log bound: past it the run stops (SimulationError)
     int max_active_set_iterations = 200;  ///< per step, before the run stops (SimulationError)
     std::function<bool()> interrupt;      ///< polled every 256 steps: true stops the run (Interrupted)
+    /// inclusion only: the one-step contact problem's solver (eigen/one_step_contact.hpp), e.g.
+    /// ProjectedGaussSeidel{}; empty: the exact active set (on a chain, with its updated LDL^T)
+    ContactSolver contact_solver;
 
     void validate() const {
         constexpr const char* who = "MoreauJeanOptions";
@@ -110,6 +103,8 @@ struct MoreauJeanOptions {
         if (max_events == 0) detail::reject(who, "max_events", "positive", 0.0);
         if (max_active_set_iterations < 2)
             detail::reject(who, "max_active_set_iterations", ">= 2", max_active_set_iterations);
+        if (contact_solver && treatment == ContactTreatment::projection)
+            detail::reject(who, "contact_solver", "empty with the explicit projection (its force is explicit)", 0.0);
     }
 };
 
@@ -281,7 +276,7 @@ public:
         for (int k = 0; k < w_.outerSize(); ++k)
             for (Eigen::SparseMatrix<double>::InnerIterator it(w_, k); it; ++it)
                 band_ = std::max<Eigen::Index>(band_, std::abs(it.row() - it.col()));
-        on_chain_ = opt_.treatment == ContactTreatment::inclusion && tridiagonal && band_ <= 1;
+        on_chain_ = opt_.treatment == ContactTreatment::inclusion && !opt_.contact_solver && tridiagonal && band_ <= 1;
         if (on_chain_) {
             const std::size_t m = static_cast<std::size_t>(n);
             std::vector<double> sub(m, 0.0), super(m, 0.0);
@@ -491,6 +486,7 @@ private:
             const double speed = std::abs(v_prev_(static_cast<Eigen::Index>(c.dof)));
             level_[j] = speed < c.slow_speed ? c.slow_bound : c.kinetic_bound;
         }
+        if (opt_.contact_solver) return solve_contacts_with(opt_.contact_solver, h);
         for (std::size_t j = 0; j < nc; ++j)  // kept in step with modes_ below
             stuck_[sys_.contacts[j].dof] = modes_[j] == ContactState::stick ? 1 : 0;
         for (int iter = 0;; ++iter) {
@@ -551,6 +547,28 @@ private:
         q_ += h * ((1.0 - opt_.theta) * v_prev_ + opt_.theta * v_);
         for (std::size_t j = 0; j < nc; ++j)  // exact zero, not a solve's round-off
             if (modes_[j] == ContactState::stick) v_(static_cast<Eigen::Index>(sys_.contacts[j].dof)) = 0.0;
+    }
+
+    /// The step's contact problem handed to a ContactSolver (b_ and level_ set), warm-started from the step's start.
+    void solve_contacts_with(const ContactSolver& solver, double h) {
+        const Eigen::Index n = v_.size();
+        contact_solution_.v = v_prev_;
+        contact_solution_.modes = modes_;
+        const OneStepContactProblem problem{w_, b_, h, sys_.contacts, level_};
+        int iterations = 0;
+        try {
+            iterations = solver(problem, contact_solution_);
+        } catch (const SimulationError& e) {
+            throw_at(t_, e.what());
+        }
+        if (contact_solution_.v.size() != n || contact_solution_.r.size() != n ||
+            contact_solution_.modes.size() != modes_.size())
+            throw_at(t_, "the contact solver left v, r or the modes of the wrong size");
+        stats_.solves += iterations;
+        v_ = contact_solution_.v;
+        reaction_ = contact_solution_.r;
+        modes_ = contact_solution_.modes;
+        q_ += h * ((1.0 - opt_.theta) * v_prev_ + opt_.theta * v_);
     }
 
     /// step_inclusion on a chain (detail::ChainLDLT), on plain arrays. The step's first iteration runs over the
@@ -818,6 +836,7 @@ private:
     std::vector<double> level_, violation_;
     std::vector<char> stuck_, factored_stuck_;
     std::vector<ContactEvent> events_;
+    OneStepContactSolution contact_solution_;
     std::size_t next_output_ = 0;
     Statistics stats_;
 };
