@@ -1,12 +1,15 @@
 // The hybrid event loop (solve/hybrid_loop.hpp) driving the HybridSystem concept (solve/hybrid_system.hpp)
 // into a Recorder (solve/recorder.hpp) on small systems whose switching behaviour is known exactly, on every integrator:
 // a guard that sits at zero right after a switch and heads into its triggering side, simultaneous switches,
-// a Zeno-prone bouncing ball that trips the chattering bound, and failures mid-run that keep the results.
+// a Zeno-prone bouncing ball that trips the chattering bound, and failures mid-run that keep the results; and
+// the one-step integrators' step driver (solve/adaptive_stepper.hpp) carrying a third scheme.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
 #include <frictionsim/simulate.hpp>
+#include <frictionsim/solve/adaptive_stepper.hpp>
 
 #include "catch.hpp"
 
@@ -103,6 +106,84 @@ struct Oscillator : ToyBase {
     int switch_mode(double, double*, int m, const int*) const { return m; }
     std::array<const char*, 2> state_names() const { return {"x", "v"}; }
     std::array<double, 2> initial_state() const { return {1.0, 0.0}; }
+};
+
+/// Heun-Euler 2(1) on the step driver that Dormand-Prince and RODAS4 share: the step loop, the restart and the
+/// root location come from AdaptiveStepper, this is only the tableau (Euler predictor, Heun's trapezoid), the
+/// error h/2 (k2 - k1), the controller h (0.9 / err)^(1/2) and the cubic Hermite dense output (FSAL slope at the
+/// step's end). Both the scheme and its dense output are exact on a parabola: a falling ball's impacts come out at
+/// their closed-form times to the bracketing tolerance.
+template <class System>
+class HeunEuler : public detail::AdaptiveStepper<HeunEuler<System>, System> {
+    using Base = detail::AdaptiveStepper<HeunEuler<System>, System>;
+    friend Base;
+
+public:
+    using State = StateArray<System>;
+    HeunEuler(const System& system, const SolverOptions& options) : Base(system, options) {
+        for (State* v : {&y_, &y1_, &ytmp_, &k1_, &k2_, &y0_, &f0_, &yh_, &fh_}) *v = make_state_array(system);
+    }
+    void interpolate(double t, double* x) const { interpolate_states(t, 0, y_.size(), x); }
+
+private:
+    static constexpr const char* kName = "HeunEuler";
+    static constexpr const char* kUnderflow = "step size underflow";
+    void f(double t, const State& x, State& dxdt) {
+        this->sys_.rhs(t, x.data(), this->mode_, dxdt.data());
+        ++this->stats_.rhs_evaluations;
+    }
+    double* y() { return y_.data(); }
+    const double* y() const { return y_.data(); }
+    double* scratch() { return ytmp_.data(); }
+    void load(const double* x) { std::copy(x, x + y_.size(), y_.begin()); }
+    void slope() { f(this->t_, y_, k1_); }
+    void reset_controller() {}
+    void cut_to_root() { slope(); }
+    double initial_step(double t_stop) {
+        return detail::starting_step(y_.size(), 1, this->opt_, this->t_, t_stop, y_.data(), k1_.data(), ytmp_.data(),
+                                     k2_.data(), [this](double t, const double* x, double* dxdt) {
+                                         this->sys_.rhs(t, x, this->mode_, dxdt);
+                                     });
+    }
+    double attempt(double h) {
+        for (std::size_t i = 0; i < y_.size(); ++i) ytmp_[i] = y_[i] + h * k1_[i];
+        f(this->t_ + h, ytmp_, k2_);
+        double err = 0.0;
+        for (std::size_t i = 0; i < y_.size(); ++i) {
+            y1_[i] = y_[i] + 0.5 * h * (k1_[i] + k2_[i]);
+            const double r = (y1_[i] - ytmp_[i]) / detail::error_scale(this->opt_, i, y_[i], y1_[i]);
+            err += r * r;
+        }
+        err = std::sqrt(err / static_cast<double>(y_.size()));
+        return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
+    }
+    double rejected_step(double h, double err) const { return h * std::max(0.2, 0.9 / std::sqrt(err)); }
+    double next_step(double h, double err) const { return h * std::min(5.0, 0.9 / std::sqrt(std::max(err, 1e-8))); }
+    void fit_dense_output(double h) {
+        y0_ = y_;
+        f0_ = k1_;
+        yh_ = y1_;
+        f(this->t_ + h, y1_, fh_);
+    }
+    void advance() {
+        y_ = y1_;
+        k1_ = fh_;
+    }
+    void euler_step(double h) {
+        y0_ = y_;
+        f0_ = fh_ = k1_;
+        for (std::size_t i = 0; i < y_.size(); ++i) y_[i] += h * k1_[i];
+        yh_ = y_;
+    }
+    void interpolate_states(double t, std::size_t first, std::size_t last, double* x) const {
+        const double h = this->h_dense_, s = (t - this->t_prev_) / h, s2 = s * s, s3 = s2 * s;
+        for (std::size_t i = first; i < last; ++i)
+            x[i] = (2 * s3 - 3 * s2 + 1) * y0_[i] + (s3 - 2 * s2 + s) * h * f0_[i] + (3 * s2 - 2 * s3) * yh_[i] +
+                   (s3 - s2) * h * fh_[i];
+    }
+
+    State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{};
+    State y0_{}, f0_{}, yh_{}, fh_{};  ///< the cubic Hermite dense output's ends
 };
 
 SolverOptions options_for(Method m) {
@@ -294,4 +375,37 @@ TEST_CASE("Dormand-Prince: global error falls like rtol and dense output is as a
         CHECK(worst < 0.2 * previous);
         previous = worst;
     }
+}
+
+TEST_CASE("the step driver written once carries a third scheme: Heun-Euler's ball bounces at the closed-form times",
+          "[solver][adaptive_stepper]") {
+    // Dropped from 1 m at rest, restitution e: impact k at sqrt(2/g) (1 + 2 (e + ... + e^(k-1))), Zeno at
+    // sqrt(2/g) (1 + 2e / (1 - e)) = 1.35 s; before 1.2 s three impacts.
+    const BouncingBall ball;
+    SolverOptions o;
+    o.rtol = 1e-6;
+    o.atol = 1e-9;
+    for (int i = 0; i <= 120; ++i) o.output_times.push_back(0.01 * i);
+    const Result r = simulate_with<HeunEuler>(ball, 1.2, o);
+    const double t1 = std::sqrt(2.0 / ball.g);
+    REQUIRE(r.events.size() == 3);
+    double t_impact = t1, flight = 2.0 * ball.restitution * t1;
+    for (const Event& e : r.events) {
+        CHECK(e.time == Approx(t_impact).margin(1e-12));
+        t_impact += flight;
+        flight *= ball.restitution;
+    }
+    // between impacts the dense output is the parabola itself: after impact k it leaves at e^k sqrt(2 g)
+    for (std::size_t i = 0; i < r.rows(); ++i) {
+        const double t = r.t[i];
+        std::size_t k = 0;
+        while (k < r.events.size() && r.events[k].time <= t) ++k;
+        const double t0 = k == 0 ? 0.0 : r.events[k - 1].time, dt = t - t0;
+        const double v0 = k == 0 ? 0.0 : std::pow(ball.restitution, static_cast<double>(k)) * std::sqrt(2.0 * ball.g);
+        INFO("t = " << t);
+        CHECK(r.state(i, 0) == Approx((k == 0 ? 1.0 : 0.0) + v0 * dt - 0.5 * ball.g * dt * dt).margin(1e-9));
+    }
+    // the driver's bookkeeping: a restart at the start and at each impact
+    CHECK(r.stats.restarts == 4);
+    CHECK(r.stats.steps > 3);
 }

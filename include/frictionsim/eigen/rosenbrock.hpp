@@ -18,9 +18,9 @@
 // true`. RODAS4 is a Rosenbrock method, not a W-method: its order needs the exact Jacobian at the step's start,
 // so J is evaluated once per step and reused only when a rejected step is retried from the same point.
 //
-// Root location as Dormand-Prince's: guards scanned at points of the dense output, the earliest crossing located
-// by Illinois false position, guards masked while they sit at zero after a restart, every guard that crossed
-// reported.
+// The step loop, the restart and the root location are Dormand-Prince's (solve/adaptive_stepper.hpp): this header
+// is the tableau, the linear algebra, the dense output and the step-size rule; a singular iteration matrix
+// refuses the step, which is halved (RODAS's rule).
 #pragma once
 
 #include <algorithm>
@@ -38,6 +38,7 @@
 #include "../error.hpp"
 #include "banded_lu.hpp"
 #include "difference_jacobian.hpp"
+#include "../solve/adaptive_stepper.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../solve/jacobian.hpp"
 #include "../solve/options.hpp"
@@ -68,17 +69,18 @@ constexpr int eigen_dimension() {
 }  // namespace detail
 
 template <class System>
-class Rodas4 {
+class Rodas4 : public detail::AdaptiveStepper<Rodas4<System>, System> {
+    using Base = detail::AdaptiveStepper<Rodas4<System>, System>;
+    friend Base;
+
 public:
     using Mode = system_mode_t<System>;
 
-    Rodas4(const System& system, const SolverOptions& options)
-        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)), roots_(system) {
+    Rodas4(const System& system, const SolverOptions& options) : Base(system, options), n_(state_size_of(system)) {
         const auto idx = static_cast<Eigen::Index>(n_);
         for (Vector* v : {&y_, &y1_, &ytmp_, &f0_, &fs_, &dfdt_, &b_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &rc0_, &rc1_,
                           &rc2_, &rc3_, &work_, &saved_})
             v->setZero(idx);
-        g1_ = make_guard_array(system);
         banded_ = use_band(options.linear_solver);
         if (banded_) {
             const Bandwidths b = bandwidths_of(system);
@@ -93,77 +95,27 @@ public:
         }
     }
 
-    /// Exact restart at a switch: a one-step method has no history, so only the step size carries over.
-    void restart(double t, const double* x, const Mode& mode) {
-        t_ = t_prev_ = t;
-        mode_ = mode;
-        std::copy(x, x + n_, y_.data());
-        rhs(t_, y_, f0_);
-        f0_current_ = true;
-        jacobian_current_ = false;
-        // Start from the last accepted step, as Dormand-Prince does: a switch rarely changes the time scales
-        // much, and a step too long for the new mode fails the error test once and shrinks.
-        h_ = std::min(h_accepted_, opt_.max_step);
-        controller_primed_ = false;
-        last_rejected_ = false;
-        guards(t_, y_, roots_.values());
-        roots_.restarted();
-        ++stats_.restarts;
-    }
-
-    StepResult step(double t_stop) {
-        if (t_stop - t_ <= underflow_step()) return cross_tiny_span(t_stop);
-        if (!f0_current_) {
-            rhs(t_, y_, f0_);
-            f0_current_ = true;
-        }
-        if (h_ == 0.0) h_ = opt_.initial_step > 0.0 ? opt_.initial_step : initial_step(t_stop);
-        int singular = 0;
-        for (;;) {
-            if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
-            bool last = false;
-            const double h = detail::trial_step(h_, opt_, t_, t_stop, last);
-            if (h <= underflow_step()) fail("step size underflow (discontinuous or non-finite right-hand side)");
-            if (!jacobian_current_) evaluate_jacobian(h);
-            ++stats_.steps;
-            if (!factorize(h)) {  // RODAS's rule: halve the step, give up after 5 singular matrices in a row
-                if (++singular > 5)
-                    fail("the matrix 1/(h gamma) I - J is singular (or not finite) at every step tried");
-                h_ = 0.5 * h;
-                last_rejected_ = true;
-                continue;
-            }
-            const double err = attempt(h);
-            if (err <= 1.0) {
-                accept(h, err, last ? t_stop : t_ + h);
-                return locate_roots();
-            }
-            ++stats_.error_test_failures;
-            last_rejected_ = true;
-            h_ = h / step_factor(err);
-        }
-    }
-
     /// Dense output of the last step (order 3), valid on [previous_time(), time()].
-    void interpolate(double t, double* x) const {
-        const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
-        for (std::size_t i = 0; i < n_; ++i) {
-            const auto k = static_cast<Eigen::Index>(i);
-            x[i] = rc0_[k] * s1 + s * (rc1_[k] + s1 * (rc2_[k] + s * rc3_[k]));
-        }
-    }
-
-    double time() const { return t_; }
-    double previous_time() const { return t_prev_; }
-    const double* state() const { return y_.data(); }
-    const int* roots() const { return roots_.roots(); }
-    SolverStats stats() const { return stats_; }
+    void interpolate(double t, double* x) const { interpolate_states(t, 0, n_, x); }
 
 private:
     static constexpr int kDim = detail::eigen_dimension<System>();
     using Vector = Eigen::Matrix<double, kDim, 1>;
     using Matrix = Eigen::Matrix<double, kDim, kDim>;
     using Guards = GuardArray<System>;
+    using Base::h_accepted_;
+    using Base::h_dense_;
+    using Base::mode_;
+    using Base::opt_;
+    using Base::stats_;
+    using Base::sys_;
+    using Base::t_;
+    using Base::t_prev_;
+
+    static constexpr const char* kName = "Rodas4";
+    static constexpr const char* kUnderflow = "step size underflow (discontinuous or non-finite right-hand side)";
+    static constexpr int kMaxRefused = 5;  // RODAS's rule: give up after 5 singular matrices in a row
+    static constexpr const char* kRefused = "the matrix 1/(h gamma) I - J is singular (or not finite) at every step tried";
 
     // RODAS (Hairer & Wanner II, sec. VI.4, in the transformed variables of their code): stage i solves
     //   (1/(h gamma) I - J) k_i = f(t + c_i h, y + sum_j a_ij k_j) + sum_j (c_ij / h) k_j + h d_i df/dt,
@@ -214,18 +166,10 @@ private:
         sys_.rhs(t, x.data(), mode_, dxdt.data());
         ++stats_.rhs_evaluations;
     }
-    void guards(double t, const Vector& x, Guards& g) {
-        if (g_count_ == 0) return;
-        sys_.guards(t, x.data(), mode_, g.data());
-        ++stats_.guard_evaluations;
-    }
     double scale(std::size_t i, double a, double b) const { return detail::error_scale(opt_, i, a, b); }
-    double underflow_step() const { return detail::underflow_step(t_); }
     static double step_factor(double err) {  // h_new = h / step_factor(err)
         return std::max(kFacMinInv, std::min(kFacMaxInv, std::pow(err, 0.25) / kSafety));
     }
-
-    [[noreturn]] void fail(const char* why) const { detail::step_failure("Rodas4", why, t_); }
 
     // J = df/dx at (t_, y_), and df/dt unless the system is autonomous.
     void evaluate_jacobian(double h) {
@@ -290,7 +234,12 @@ private:
         throw std::logic_error(msg.str());
     }
 
-    // LU of 1/(h gamma) I - J; false when it is singular or not finite.
+    // Before each trial: J at the step's start (once: a retry from the same point reuses it), then the LU of
+    // 1/(h gamma) I - J; false when it is singular or not finite.
+    bool prepare(double h) {
+        if (!jacobian_current_) evaluate_jacobian(h);
+        return factorize(h);
+    }
     bool factorize(double h) {
         const double alpha = 1.0 / (h * gamma);
         if (banded_) return band_lu_.factorize(alpha, -1.0, jacobian_band_);
@@ -354,95 +303,68 @@ private:
         return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
     }
 
-    void accept(double h, double err, double t_new) {
+    // The hooks of the step driver (adaptive_stepper.hpp).
+    double* y() { return y_.data(); }
+    const double* y() const { return y_.data(); }
+    double* scratch() { return ytmp_.data(); }
+    void load(const double* x) { std::copy(x, x + n_, y_.data()); }
+    void slope() {  // f0 at (t_, y_); J is due
+        rhs(t_, y_, f0_);
+        f0_current_ = true;
+        jacobian_current_ = false;
+    }
+    void begin_step() {  // f0 is evaluated lazily: a step cut back to a root is usually followed by a restart
+        if (!f0_current_) {
+            rhs(t_, y_, f0_);
+            f0_current_ = true;
+        }
+    }
+    void reset_controller() { controller_primed_ = false; }
+    double rejected_step(double h, double err) const { return h / step_factor(err); }
+
+    void fit_dense_output(double) {
         rc0_ = y_;
         rc1_ = y1_;
         rc2_ = e21 * k1_ + e22 * k2_ + e23 * k3_ + e24 * k4_ + e25 * k5_;
         rc3_ = e31 * k1_ + e32 * k2_ + e33 * k3_ + e34 * k4_ + e35 * k5_;
+    }
+    double next_step(double h, double err) {
         double fac = step_factor(err);
         if (controller_primed_) {  // Gustafsson: also predict from the last two accepted errors
             const double predicted = (h_accepted_ / h) * std::pow(err * err / err_accepted_, 0.25) / kSafety;
             fac = std::max(fac, std::max(kFacMinInv, std::min(kFacMaxInv, predicted)));
         }
-        double h_new = h / fac;
-        if (last_rejected_) h_new = std::min(h_new, h);
         controller_primed_ = true;
         err_accepted_ = std::max(0.01, err);
-        h_accepted_ = h_dense_ = h;
-        last_rejected_ = false;
-        t_prev_ = t_;
-        t_ = t_new;
+        return h / fac;
+    }
+    void advance() {
         y_ = y1_;
-        h_ = h_new;
         f0_current_ = false;
         jacobian_current_ = false;
     }
 
-    /// What is left to t_stop is a few ulps: one Euler step, linear dense output, no guard scan.
-    StepResult cross_tiny_span(double t_stop) {
+    void euler_step(double h) {
         if (!f0_current_) rhs(t_, y_, f0_);
-        const double h = t_stop - t_;
         rc0_ = y_;
         rc1_ = y_ + h * f0_;
         rc2_.setZero();
         rc3_.setZero();
-        ++stats_.steps;
-        h_dense_ = h > 0.0 ? h : 1.0;
-        t_prev_ = t_;
-        t_ = t_stop;
         y_ = rc1_;
-        rhs(t_, y_, f0_);
-        f0_current_ = true;
-        jacobian_current_ = false;
-        guards(t_, y_, roots_.values());
-        return {t_, false};
     }
 
-    // After an accepted step: did a guard cross zero in its direction? Then cut the step at the earliest crossing
-    // on the dense output (root_location.hpp) and report every guard that has crossed there.
-    StepResult locate_roots() {
-        if (g_count_ == 0) return {t_, false};
-        Guards& g1 = g1_;
-        guards(t_, y_, g1);
-        roots_.set_references(mode_, g1);
-        double t_root = t_;
-        const auto at = [this](double t, Guards& g) {
-            interpolate(t, ytmp_.data());
-            guards(t, ytmp_, g);
-        };
-        bool any = false;
-        if constexpr (detail::has_local_guards_v<System>) {  // bracket a guard on the states it reads alone
-            any = roots_.scan(mode_, t_prev_, t_, g1, at, [this](std::size_t i, double t) {
-                const GuardReads r = sys_.guard_reads(i);
-                const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
-                for (std::size_t j = r.first; j < r.last; ++j) {  // interpolate()'s expression
-                    const auto k = static_cast<Eigen::Index>(j);
-                    ytmp_[k] = rc0_[k] * s1 + s * (rc1_[k] + s1 * (rc2_[k] + s * rc3_[k]));
-                }
-                return sys_.guard(i, t, ytmp_.data(), mode_);
-            }, t_root);
-        } else {
-            any = roots_.scan(mode_, t_prev_, t_, g1, at, t_root);
+    void interpolate_states(double t, std::size_t first, std::size_t last, double* x) const {
+        const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
+        for (std::size_t i = first; i < last; ++i) {
+            const auto k = static_cast<Eigen::Index>(i);
+            x[i] = rc0_[k] * s1 + s * (rc1_[k] + s1 * (rc2_[k] + s * rc3_[k]));
         }
-        if (!any) return {t_, false};
-        if (t_root < t_) {
-            interpolate(t_root, y_.data());
-            t_ = t_root;
-            guards(t_, y_, g1);
-        }
-        roots_.mark(mode_, g1);
-        return {t_, true};
     }
 
-    const System& sys_;
-    const SolverOptions& opt_;
-    std::size_t n_ = 0, g_count_ = 0;
-    Mode mode_{};
+    std::size_t n_ = 0;
     bool banded_ = false;
-    double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0;
-    double h_accepted_ = 0.0;    ///< last accepted step (0 before the first): the step after a restart
-    double err_accepted_ = 1.0;  ///< its error, for the predictive controller
-    bool controller_primed_ = false, last_rejected_ = false, f0_current_ = false, jacobian_current_ = false;
+    double err_accepted_ = 1.0;  ///< the last accepted step's error, for the predictive controller
+    bool controller_primed_ = false, f0_current_ = false, jacobian_current_ = false;
     Vector y_, y1_, ytmp_, f0_, fs_, dfdt_, b_, k1_, k2_, k3_, k4_, k5_, k6_;
     Vector rc0_, rc1_, rc2_, rc3_;  ///< dense output of the last step
     Vector work_, saved_;           ///< difference Jacobian's work space
@@ -450,9 +372,6 @@ private:
     Eigen::PartialPivLU<Matrix> lu_;
     BandMatrix jacobian_band_;
     BandedLU band_lu_;
-    Guards g1_{};  ///< guards at the step's end
-    detail::RootLocator<System> roots_;
-    SolverStats stats_;
 };
 
 }  // namespace frictionsim

@@ -1,7 +1,8 @@
 // Header-only Dormand-Prince RK5(4) with FSAL, PI step control and 4th-order dense output
-// (Hairer, Norsett & Wanner, Solving ODEs I, sec. II.5-6; coefficients of their DOPRI5 code), plus root
-// location of the switching functions on the dense output. For rigs that are accuracy-limited, not stiff:
-// at tight tolerance CVODE's per-step overhead (Newton, history, interpolation) is wasted on them.
+// (Hairer, Norsett & Wanner, Solving ODEs I, sec. II.5-6; coefficients of their DOPRI5 code): the tableau and the
+// step-size rule; the step loop and the root location on the dense output are adaptive_stepper.hpp's. For rigs
+// that are accuracy-limited, not stiff: at tight tolerance CVODE's per-step overhead (Newton, history,
+// interpolation) is wasted on them.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <utility>
 
 #include "../error.hpp"
+#include "adaptive_stepper.hpp"
 #include "hybrid_system.hpp"
 #include "options.hpp"
 #include "result.hpp"
@@ -59,54 +61,20 @@ struct has_rhs_guards<S, std::void_t<decltype(std::declval<const S&>().rhs_guard
 #define FRICTIONSIM_DETAIL_STATES (kFixed ? kStates : n_)
 
 template <class System>
-class DormandPrince {
+class DormandPrince : public detail::AdaptiveStepper<DormandPrince<System>, System> {
+    using Base = detail::AdaptiveStepper<DormandPrince<System>, System>;
+    friend Base;
+
 public:
     using State = StateArray<System>;
     using Guards = GuardArray<System>;
     using Mode = system_mode_t<System>;
 
-    DormandPrince(const System& system, const SolverOptions& options)
-        : sys_(system), opt_(options), n_(state_size_of(system)), g_count_(guard_count_of(system)), roots_(system) {
+    DormandPrince(const System& system, const SolverOptions& options) : Base(system, options), n_(state_size_of(system)) {
         for (State* v : {&y_, &y1_, &ytmp_, &k1_, &k2_, &k3_, &k4_, &k5_, &k6_, &k7_, &rc1_, &rc2_, &rc3_, &rc4_, &rc5_})
             *v = make_state_array(system);
-        for (Guards* v : {&stage_g_[0], &stage_g_[1], &stage_g_[2], &stage_g_[3], &end_g_, &g1_, &g_gap_})
+        for (Guards* v : {&stage_g_[0], &stage_g_[1], &stage_g_[2], &stage_g_[3], &end_g_, &g_gap_})
             *v = make_guard_array(system);
-    }
-
-    void restart(double t, const double* x, const Mode& mode) {
-        t_ = t_prev_ = t;
-        mode_ = mode;
-        std::copy(x, x + n(), y_.begin());
-        rhs(t_, y_, k1_);
-        // Start from the last accepted step: at a switch the right-hand side jumps (or kinks) but its time scales
-        // rarely change, and Hairer's starting guess from one Euler step would ramp up from far below them. A
-        // step too long for the new mode fails the error test once and shrinks.
-        h_ = std::min(h_dense_accepted_, opt_.max_step);
-        log_facold_ = kLogFacoldMin;
-        last_rejected_ = false;
-        guards(t_, y_, roots_.values());
-        roots_.restarted();
-        ++stats_.restarts;
-    }
-
-    StepResult step(double t_stop) {
-        if (t_stop - t_ <= underflow_step()) return cross_tiny_span(t_stop);
-        if (h_ == 0.0) h_ = opt_.initial_step > 0.0 ? opt_.initial_step : initial_step(t_stop);
-        for (;;) {
-            if (stats_.steps >= opt_.max_steps) fail("max_steps exceeded (raise SolverOptions::max_steps)");
-            bool last = false;
-            const double h = detail::trial_step(h_, opt_, t_, t_stop, last);
-            if (h <= underflow_step()) fail("step size underflow (stiff, discontinuous or non-finite right-hand side)");
-            ++stats_.steps;
-            const double err = attempt(h);
-            if (err <= 1.0) {
-                accept(h, err, last ? t_stop : t_ + h);
-                return locate_roots();
-            }
-            ++stats_.error_test_failures;
-            last_rejected_ = true;
-            h_ = std::isfinite(err) ? h / std::min(kFacMaxInv, std::pow(err, kExpo1) / kSafety) : 0.1 * h;
-        }
     }
 
     /// Dense output of the last step (Hairer's contd5), valid on [previous_time(), time()].
@@ -117,35 +85,34 @@ public:
             x[i] = rc1_[i] + s * (rc2_[i] + s1 * (rc3_[i] + s * (rc4_[i] + s1 * rc5_[i])));
     }
 
-    double time() const { return t_; }
-    double previous_time() const { return t_prev_; }
-    const double* state() const { return y_.data(); }
-    const int* roots() const { return roots_.roots(); }
-    SolverStats stats() const { return stats_; }
-
 private:
+    using Base::guards;
+    using Base::h_dense_;
+    using Base::mode_;
+    using Base::opt_;
+    using Base::roots_;
+    using Base::stats_;
+    using Base::sys_;
+    using Base::t_;
+    using Base::t_prev_;
+
+    static constexpr const char* kName = "DormandPrince";
+    static constexpr const char* kUnderflow = "step size underflow (stiff, discontinuous or non-finite right-hand side)";
+
     static constexpr bool kFixed = has_fixed_size_v<System>;
     static constexpr std::size_t kStates = [] {
         if constexpr (has_fixed_size_v<System>) return System::state_size;
         else return std::size_t{0};
     }();
-    /// States and guards: compile-time constants for the lab rigs (the loops below unroll: `GCC unroll` needs the
-    /// bound as a constant expression in the loop itself), else the run's sizes.
+    /// States: a compile-time constant for the lab rigs (the loops below unroll: `GCC unroll` needs the bound as a
+    /// constant expression in the loop itself), else the run's size.
     std::size_t n() const { return FRICTIONSIM_DETAIL_STATES; }
-    std::size_t G() const {
-        if constexpr (kFixed) return System::guard_count;
-        else return g_count_;
-    }
-    static constexpr bool kNoGuards = [] {
-        if constexpr (has_fixed_size_v<System>) return System::guard_count == 0;
-        else return false;
-    }();
 
     // Dormand-Prince 5(4) tableau.
     /// With rhs_guards, the guards come free with the stages (c = 0.2, 0.3, 0.8, 8/9 and the end, exact there):
     /// those values and one dense-output point in their widest gap (0.3 to 0.8) leave no gap over h/4, as the
     /// uniform scan does, and the full scan runs only when one of them shows a crossing.
-    static constexpr bool kStageGuards = !kNoGuards && detail::has_rhs_guards<System>::value;
+    static constexpr bool kStageGuards = !Base::kNoGuards && detail::has_rhs_guards<System>::value;
     static constexpr double kGapPoint = 0.55;
     static constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
     static constexpr double a21 = 1.0 / 5;
@@ -180,37 +147,16 @@ private:
             rhs(t, x, dxdt);
         }
     }
-    void guards(double t, const State& x, Guards& g) {
-        if constexpr (!kNoGuards) {
-            if (G() == 0) return;
-            sys_.guards(t, x.data(), mode_, g.data());
-            ++stats_.guard_evaluations;
-        }
-    }
     double scale(std::size_t i, double a, double b) const { return detail::error_scale(opt_, i, a, b); }
-    double underflow_step() const { return detail::underflow_step(t_); }
 
-    /// What is left to t_stop is a few ulps (a run of t_end = 1e-300, a switch located just before t_end): one
-    /// Euler step, linear dense output, no guard scan (no crossing can be resolved inside it).
-    StepResult cross_tiny_span(double t_stop) {
-        const double h = t_stop - t_;
-        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
-            y1_[i] = y_[i] + h * k1_[i];
-            rc1_[i] = y_[i];
-            rc2_[i] = y1_[i] - y_[i];
-            rc3_[i] = rc4_[i] = rc5_[i] = 0.0;
-        }
-        ++stats_.steps;
-        h_dense_ = h > 0.0 ? h : 1.0;
-        t_prev_ = t_;
-        t_ = t_stop;
-        y_ = y1_;
-        rhs(t_, y_, k1_);
-        guards(t_, y_, roots_.values());
-        return {t_, false};
-    }
-
-    [[noreturn]] void fail(const char* why) const { detail::step_failure("DormandPrince", why, t_); }
+    // The hooks of the step driver (adaptive_stepper.hpp).
+    double* y() { return y_.data(); }
+    const double* y() const { return y_.data(); }
+    double* scratch() { return ytmp_.data(); }
+    void load(const double* x) { std::copy(x, x + n(), y_.begin()); }
+    void slope() { rhs(t_, y_, k1_); }  // the first stage (first same as last after an accepted step)
+    void reset_controller() { log_facold_ = kLogFacoldMin; }
+    void cut_to_root() { slope(); }
 
     double initial_step(double t_stop) {
         return detail::starting_step(n(), 4, opt_, t_, t_stop, y_.data(), k1_.data(), ytmp_.data(), k2_.data(),
@@ -255,9 +201,13 @@ private:
         return std::isfinite(err) ? err : std::numeric_limits<double>::infinity();
     }
 
-    void accept(double h, double err, double t_new) {
+    double rejected_step(double h, double err) const {
+        return std::isfinite(err) ? h / std::min(kFacMaxInv, std::pow(err, kExpo1) / kSafety) : 0.1 * h;
+    }
+
+    void fit_dense_output(double h) {
         FRICTIONSIM_DETAIL_UNROLL
-        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {  // dense-output coefficients (Hairer's rcont1..5)
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {  // Hairer's rcont1..5
             const double dy = y1_[i] - y_[i], bspl = h * k1_[i] - dy;
             rc1_[i] = y_[i];
             rc2_[i] = dy;
@@ -265,96 +215,69 @@ private:
             rc4_[i] = dy - h * k7_[i] - bspl;
             rc5_[i] = h * (d1 * k1_[i] + d3 * k3_[i] + d4 * k4_[i] + d5 * k5_[i] + d6 * k6_[i] + d7 * k7_[i]);
         }
-        // err^expo1 / facold^beta as one exp of logs, facold's log kept from the last step (pow is ~10 % of a
-        // step on the axial rig otherwise)
+    }
+
+    // PI control: err^expo1 / facold^beta as one exp of logs, facold's log kept from the last step (pow is ~10 %
+    // of a step on the axial rig otherwise)
+    double next_step(double h, double err) {
         const double log_err = std::log(err);
         double fac = std::exp(kExpo1 * log_err - kBeta * log_facold_);
         fac = std::max(kFacMinInv, std::min(kFacMaxInv, fac / kSafety));
-        double h_new = h / fac;
-        if (last_rejected_) h_new = std::min(h_new, h);
         log_facold_ = std::max(log_err, kLogFacoldMin);
-        last_rejected_ = false;
-        h_dense_ = h_dense_accepted_ = h;
-        t_prev_ = t_;
-        t_ = t_new;
-        y_ = y1_;
-        k1_ = k7_;  // first same as last
-        h_ = h_new;
+        return h / fac;
     }
 
-    // After an accepted step: did a switching function cross zero in its direction? If so, cut the step at the
-    // earliest crossing on the dense output (root_location.hpp) and report every guard that has crossed.
-    StepResult locate_roots() {
-        if constexpr (kNoGuards) {
-            return {t_, false};
-        } else {
-            if (G() == 0) return {t_, false};
-            Guards& g1 = g1_;
-            if constexpr (kStageGuards) g1 = end_g_;
-            else guards(t_, y_, g1);
-            roots_.set_references(mode_, g1);
-            if constexpr (kStageGuards) {
-                if (!crossing_seen(g1)) {
-                    roots_.no_root(g1);
-                    return {t_, false};
-                }
-            }
-            double t_root = t_;
-            const auto at = [this](double t, Guards& g) {
-                interpolate(t, ytmp_.data());
-                guards(t, ytmp_, g);
-            };
-            bool any = false;
-            if constexpr (detail::has_local_guards_v<System>) {  // bracket a guard on the states it reads alone
-                any = roots_.scan(mode_, t_prev_, t_, g1, at, [this](std::size_t i, double t) {
-                    const GuardReads r = sys_.guard_reads(i);
-                    const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
-                    for (std::size_t k = r.first; k < r.last; ++k)  // interpolate()'s expression
-                        ytmp_[k] = rc1_[k] + s * (rc2_[k] + s1 * (rc3_[k] + s * (rc4_[k] + s1 * rc5_[k])));
-                    return sys_.guard(i, t, ytmp_.data(), mode_);
-                }, t_root);
-            } else {
-                any = roots_.scan(mode_, t_prev_, t_, g1, at, t_root);
-            }
-            if (!any) return {t_, false};
-            if (t_root < t_) {
-                interpolate(t_root, y_.data());
-                t_ = t_root;
-                guards(t_, y_, g1);
-                rhs(t_, y_, k1_);
-            }
-            roots_.mark(mode_, g1);
-            return {t_, true};
+    void advance() {
+        y_ = y1_;
+        k1_ = k7_;  // first same as last
+    }
+
+    void euler_step(double h) {
+        for (std::size_t i = 0; i < FRICTIONSIM_DETAIL_STATES; ++i) {
+            y1_[i] = y_[i] + h * k1_[i];
+            rc1_[i] = y_[i];
+            rc2_[i] = y1_[i] - y_[i];
+            rc3_[i] = rc4_[i] = rc5_[i] = 0.0;
         }
+        y_ = y1_;
+    }
+
+    void interpolate_states(double t, std::size_t first, std::size_t last, double* x) const {
+        const double s = (t - t_prev_) / h_dense_, s1 = 1.0 - s;
+        for (std::size_t k = first; k < last; ++k)  // interpolate()'s expression
+            x[k] = rc1_[k] + s * (rc2_[k] + s1 * (rc3_[k] + s * (rc4_[k] + s1 * rc5_[k])));
+    }
+
+    // The guards at the step's end: with rhs_guards, those of the last stage.
+    void end_guards(Guards& g) {
+        if constexpr (kStageGuards) g = end_g_;
+        else guards(t_, y_.data(), g);
     }
 
     // Any guard crossed from its reference at the step's end, at a stage of the accepted step, or at the dense
     // output in the stages' widest gap? Only then is the full scan worth its guard evaluations.
-    bool crossing_seen(const Guards& g1) {
-        if (roots_.crosses(mode_, g1)) return true;
-        for (const auto& g : stage_g_)
-            if (roots_.crosses(mode_, g)) return true;
-        const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
-        interpolate(t_gap, ytmp_.data());
-        guards(t_gap, ytmp_, g_gap_);
-        return roots_.crosses(mode_, g_gap_);
+    bool may_cross(const Guards& g1) {
+        if constexpr (!kStageGuards) {
+            (void)g1;
+            return true;
+        } else {
+            if (roots_.crosses(mode_, g1)) return true;
+            for (const auto& g : stage_g_)
+                if (roots_.crosses(mode_, g)) return true;
+            const double t_gap = t_prev_ + (t_ - t_prev_) * kGapPoint;
+            interpolate(t_gap, ytmp_.data());
+            guards(t_gap, ytmp_.data(), g_gap_);
+            return roots_.crosses(mode_, g_gap_);
+        }
     }
 
-    const System& sys_;
-    const SolverOptions& opt_;
-    std::size_t n_ = 0, g_count_ = 0;
-    Mode mode_{};
-    double t_ = 0.0, t_prev_ = 0.0, h_ = 0.0, h_dense_ = 1.0;
+    std::size_t n_ = 0;
     double log_facold_ = kLogFacoldMin;  ///< log of the PI controller's previous error, at least log 1e-4
-    double h_dense_accepted_ = 0.0;  ///< last accepted step, 0 before the first: the step after a restart
-    std::array<Guards, 4> stage_g_{};  ///< guards at stages 2-5 (rhs_guards systems only)
-    Guards end_g_{};                   ///< guards at (t + h, y1)
-    bool last_rejected_ = false;
+    std::array<Guards, 4> stage_g_{};    ///< guards at stages 2-5 (rhs_guards systems only)
+    Guards end_g_{};                     ///< guards at (t + h, y1)
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{}, k3_{}, k4_{}, k5_{}, k6_{}, k7_{};
     State rc1_{}, rc2_{}, rc3_{}, rc4_{}, rc5_{};
-    Guards g1_{}, g_gap_{};  ///< guards at the step's end and in the stages' gap (no heap per step)
-    detail::RootLocator<System> roots_;
-    SolverStats stats_;
+    Guards g_gap_{};  ///< guards in the stages' gap (no heap per step)
 };
 
 }  // namespace frictionsim
