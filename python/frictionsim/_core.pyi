@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_EIGEN', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'Leuven', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopez2Dof', 'NavarroLopez4Dof', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'TorsionalString', 'aarsnes_shor_well_b', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_EIGEN', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'Leuven', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopez2Dof', 'NavarroLopez4Dof', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'TorsionalString', 'aarsnes_shor_well_b', 'automatic_treatment', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -2646,8 +2646,9 @@ class TorsionalString:
     elements : int = 200
         N >= 1: N + 1 nodes.
     survey : (measured_depth, inclination) or Survey, optional
-        Inclination [rad] against measured depth [m], linear in between; it must reach the bit. Default: a straight
-        well of `inclination`.
+        The well's inclination at each measured depth (Survey.inclination_at): an fs.Survey (minimum curvature, its
+        azimuths count), or (measured_depth [m], inclination [rad]), a well in one vertical plane, linear in between.
+        It must reach the bit. Default: a straight well of `inclination`.
     contact_radius : sequence of float, optional
         r_o per section [m]; default each section's OD / 2.
     bit : NavarroLopezBit, optional
@@ -2682,6 +2683,8 @@ class TorsionalString:
         rho_mud [kg/m^3], non-negative and finite: Mud density (buoyancy).
     damping_rate : float = 0
         k_t [1/s], non-negative and finite: Viscous damping: torque k_t rho J omega per unit length.
+    damping_time : float = 0
+        beta [s], non-negative and finite: Structural damping: each element's damper is beta times its stiffness (StringRig's damping_time).
     bha_inertia : float = 0
         J_BHA [kg m^2], non-negative and finite: Inertia lumped on the bit.
     bit_torque : float = 0
@@ -2692,7 +2695,7 @@ class TorsionalString:
         W [N], non-negative and finite: Weight on bit of the velocity-weakening bit at node N; 0: off bottom.
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, *, top_drive_inertia: float = 2900, proportional_gain: float = 38000, integral_gain: float = 100000, speed_setpoint: float = 4.1887902047863905, setpoint_time_constant: float = 1, control_period: float = 0, friction_coefficient: float = 0.3, kinetic_ratio: float = 0.65, stick_band_speed: float = 0, inclination: float = 1.0471975511965976, mud_density: float = 0, damping_rate: float = 0, bha_inertia: float = 0, bit_torque: float = 0, gravity: float = 9.81, weight_on_bit: float = 0, elements: int = 200, survey: typing.Any | None = None, contact_radius: collections.abc.Sequence[float] | None = None, bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, switch_tolerance: float = 1e-10) -> None:
+    def __init__(self, string: DrillString, *, top_drive_inertia: float = 2900, proportional_gain: float = 38000, integral_gain: float = 100000, speed_setpoint: float = 4.1887902047863905, setpoint_time_constant: float = 1, control_period: float = 0, friction_coefficient: float = 0.3, kinetic_ratio: float = 0.65, stick_band_speed: float = 0, inclination: float = 1.0471975511965976, mud_density: float = 0, damping_rate: float = 0, damping_time: float = 0, bha_inertia: float = 0, bit_torque: float = 0, gravity: float = 9.81, weight_on_bit: float = 0, elements: int = 200, survey: typing.Any | None = None, contact_radius: collections.abc.Sequence[float] | None = None, bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, switch_tolerance: float = 1e-10) -> None:
         """
         The string, then the set-up and the parameters by keyword (see the class docstring).
         """
@@ -2740,6 +2743,16 @@ class TorsionalString:
         A&S eq 34: 2 (1 - f_rat) top_drive_twist / omega_SP [s].
         """
     @property
+    def contact_count(self) -> int:
+        """
+        Wall contacts (nodes with a static bound > 0; on bottom node N's is the bit's): what a run's Result.mode counts at rest, as a StringRig's does.
+        """
+    @property
+    def contact_nodes(self) -> list[int]:
+        """
+        The nodes of the wall contacts, top down (a StringRig's contact_nodes).
+        """
+    @property
     def contact_radius(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         r_o of each section [m].
@@ -2753,6 +2766,11 @@ class TorsionalString:
     def damping_rate(self) -> float:
         """
         k_t [1/s]: Viscous damping: torque k_t rho J omega per unit length.
+        """
+    @property
+    def damping_time(self) -> float:
+        """
+        beta [s]: Structural damping: each element's damper is beta times its stiffness (StringRig's damping_time).
         """
     @property
     def element_length(self) -> float:
@@ -3355,6 +3373,17 @@ def aarsnes_shor_well_b(collar: str = 'as_published', wave_speed: str = 'as_code
     The break-off torque (eq 27) depends on the wave-speed variant only: the collar variants share the collar's
     area, hence its weight, and the polar moment does not enter the wall friction. "physical" gives the paper's
     analytic 19.531 kN m; "as_code" weighs the collar 67/61 times heavier, hence more wall friction: 20.536 kN m.
+    """
+def automatic_treatment(wall_contacts: typing.SupportsInt | typing.SupportsIndex, bit_on_bottom: bool) -> str:
+    """
+    The contact treatment a drill string of `wall_contacts` wall contacts runs cheapest in: "exact" (fs.StringRig,
+    every switch located), "mixed" (fs.TorsionalString with the bit's switches located, the walls captured) or
+    "captured" (fs.TorsionalString, Moreau-Jean over every contact).
+    
+    The rule, measured (bench/mixed.bench.cpp: the cost to reach 1e-4 s in the bit's switch times, ratios within one
+    run): exact up to 30 contacts (at 10 the mixed costs 3.1x and the captured 8.7x the exact), mixed up to 300 with
+    the bit on bottom (at 100 the exact costs 1.25x and the captured 1.7x the mixed), captured beyond (at 1000 the
+    mixed costs 1.07x and the exact 1.43x the captured). Off bottom the mixed treatment is the captured one.
     """
 def equivalent_rig_normal_force(params: HydraulicOscillatorParams) -> float:
     ...

@@ -25,7 +25,9 @@ from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
+from . import _core
 from ._core import DetournayBit, DrillString, NavarroLopezBit, PipeSection, StringRig
+from .errors import InvalidParameterError
 from .result import Result
 
 __all__ = [
@@ -36,6 +38,8 @@ __all__ = [
     "StickSlip",
     "StickSlipMap",
     "StringRig",
+    "TREATMENTS",
+    "automatic_treatment",
     "bit_speed",
     "bit_torque",
     "field_string",
@@ -45,6 +49,8 @@ __all__ = [
     "stick_slip",
     "stick_slip_map",
     "stick_slip_point",
+    "string_model",
+    "string_treatment",
     "stuck_contacts",
     "surface_speed",
     "surface_torque",
@@ -62,6 +68,104 @@ def field_string(pipe_length: float = 2800.0, collar_length: float = 200.0) -> D
                         PipeSection(length=collar_length, **DRILL_COLLAR)])
 
 
+#: The treatments of a string's contacts: every switch located (a StringRig), every contact captured by
+#: Moreau-Jean (a TorsionalString), the walls captured and the bit's switches located (mixed), or the measured rule.
+TREATMENTS = ("exact", "captured", "mixed", "auto")
+
+#: The StringRig keywords a TorsionalString takes for the same physics, and its name for each.
+SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elements": "elements",
+          "bit": "bit", "weight_on_bit": "weight_on_bit", "inclination": "inclination",
+          "mud_density": "mud_density", "top_drive_inertia": "top_drive_inertia",
+          "proportional_gain": "proportional_gain", "integral_gain": "integral_gain",
+          "damping_time": "damping_time"}
+
+
+#: The measured rule (C++ string/treatment.hpp): the treatment a string of so many wall contacts runs cheapest in.
+automatic_treatment = _core.automatic_treatment
+
+
+def _keywords(engine) -> set:
+    return {p.name for p in engine.parameters} | set(_EXTRA_KEYWORDS.get(engine.__name__, ()))
+
+
+#: Keywords outside each engine's table.
+_EXTRA_KEYWORDS = {
+    "StringRig": ("elements", "top_drive", "axial", "hoisting", "wall_contacts", "contact_nodes", "normal_forces",
+                  "node_inclinations", "excitation_node", "bit", "weight_on_bit", "start_hanging"),
+    "TorsionalString": ("elements", "survey", "contact_radius", "bit", "slow_speed", "switch_tolerance"),
+}
+
+
+def wall_coefficients(friction) -> Dict[str, float]:
+    """A captured string's wall friction from a StringRig's wall law: a Coulomb law's static coefficient is the
+    TorsionalString's friction_coefficient mu, its kinetic one over that the kinetic_ratio f_rat (A&S eq 4)."""
+    if not isinstance(friction, _core.Coulomb):
+        raise InvalidParameterError(f"friction: must be coulomb under treatment captured or mixed (A&S eq 4: "
+                                    f"static mu, kinetic f_rat mu; got {type(friction).__name__})", "friction")
+    mu_s, mu_k = float(friction.mu_static), float(friction.mu)
+    return {"friction_coefficient": mu_s, "kinetic_ratio": mu_k / mu_s if mu_s > 0 else 1.0}
+
+
+def string_treatment(treatment: str = "auto", **keywords: Any) -> str:
+    """The treatment a string of these StringRig / TorsionalString ``keywords`` runs under: ``treatment`` itself, or
+    for "auto" the measured rule of :func:`automatic_treatment` on its wall contacts (``elements``, 20
+    by default as StringRig's, less the bit's node on bottom): exact up to 30 contacts, mixed up to 300 with the bit
+    on bottom, captured beyond. A keyword only one engine takes chooses it (``axial=True`` the exact StringRig,
+    ``stick_band_speed`` the captured string); without Eigen (no TorsionalString) "auto" is "exact"."""
+    if treatment not in TREATMENTS:
+        raise InvalidParameterError(f"treatment: must be one of {', '.join(TREATMENTS)} (got {treatment!r})",
+                                    "treatment")
+    if treatment != "auto":
+        return treatment
+    captured_engine = getattr(_core, "TorsionalString", None)
+    if captured_engine is None:
+        return "exact"
+    exact, captured = _keywords(StringRig), _keywords(captured_engine)
+    if any(k in exact and k not in SHARED for k in keywords):
+        return "exact"
+    on_bottom = keywords.get("bit") is not None and float(keywords.get("weight_on_bit", 0.0) or 0.0) > 0.0
+    elements = int(keywords.get("elements", 20))
+    chosen = _core.automatic_treatment(max(elements - (1 if on_bottom else 0), 0), on_bottom)
+    if chosen == "exact" and any(k in captured and k not in SHARED.values() for k in keywords):
+        return "mixed" if on_bottom else "captured"
+    return chosen
+
+
+def string_model(string: DrillString, friction, *, treatment: str = "auto", **keywords: Any):
+    """One drill string, its contacts treated as chosen: "exact" a :class:`~frictionsim.StringRig` (every stick and
+    slip located as an event), "captured" or "mixed" a :class:`~frictionsim.TorsionalString` (Moreau-Jean over the
+    walls; mixed also locates the bit's switches) of the same physics, "auto" by the measured rule
+    (:func:`string_treatment`). ``friction`` is the wall law (captured / mixed: a Coulomb law, its static and
+    kinetic coefficients); ``keywords`` are StringRig's (the ones a TorsionalString shares are renamed: surface_speed
+    -> speed_setpoint, end_inertia -> bha_inertia) or a TorsionalString's own (survey, stick_band_speed, ...). A
+    keyword the chosen engine cannot take is refused naming it. Run either with :func:`frictionsim.simulate`
+    (captured / mixed: ``method="moreau_jean", step=``); both Results' mode column counts the wall contacts at rest.
+    One difference of lumping stays: a StringRig has no wall at node 0 (the top drive's), the captured string has
+    that node's half element's where the well is inclined at the top; they agree as N grows, and exactly in a well
+    vertical at the top (the C++ exact_string builds the StringRig of a TorsionalString).
+
+        >>> import frictionsim as fs
+        >>> from frictionsim import drillstring as ds
+        >>> model = ds.string_model(ds.field_string(), fs.Coulomb(0.2, 0.3), elements=400, treatment="auto")
+        >>> type(model).__name__
+        'TorsionalString'
+    """
+    chosen = string_treatment(treatment, **keywords)
+    if chosen == "exact":
+        return StringRig(string, friction, **keywords)
+    engine = _core.TorsionalString
+    own = _keywords(engine)
+    captured: Dict[str, Any] = {}
+    for key, value in keywords.items():
+        name = SHARED.get(key, key)
+        if name not in own or name in ("friction_coefficient", "kinetic_ratio"):
+            raise InvalidParameterError(f"{key}: treatment {chosen!r} cannot take it (a StringRig keyword without a "
+                                        f"captured counterpart; the wall friction comes from `friction`)", key)
+        captured[name] = value
+    captured.update(wall_coefficients(friction))
+    return engine(string, treatment=chosen, **captured)
+
+
 def _time_stepped(rig) -> bool:
     """A TorsionalString (Moreau-Jean, contacts captured): its Result's columns are its outputs, not node states."""
     return not hasattr(rig, "omega_index")
@@ -73,8 +177,9 @@ def set_speed(rig) -> float:
 
 
 def wall_contacts(rig) -> int:
-    """How many wall contacts the string has: a StringRig's contact nodes, every node of a TorsionalString."""
-    return int(rig.nodes) if _time_stepped(rig) else len(rig.contact_nodes)
+    """How many wall contacts the string has (its contact_nodes; a TorsionalString's nodes with wall friction):
+    what the Result's mode column counts at rest, under every treatment."""
+    return len(rig.contact_nodes)
 
 
 def bit_speed(rig, result: Result) -> np.ndarray:
@@ -128,7 +233,7 @@ def hook_load(rig: StringRig, result: Result) -> np.ndarray:
 
 
 def stuck_contacts(result: Result) -> np.ndarray:
-    """How many wall contacts stick at each row (a StringRig's Result mode column counts them)."""
+    """How many wall contacts stick at each row (the Result's mode column counts them under every treatment)."""
     return np.asarray(result.mode)
 
 

@@ -1,6 +1,6 @@
 """Torque and drag along a real well: surveys, the soft-string model, broomstick plots (issue 14).
 
-The model is C++: :class:`~frictionsim.Survey` (``include/frictionsim/wells/survey.hpp``: minimum curvature,
+The model is C++: :class:`~frictionsim.Survey` (``include/frictionsim/survey.hpp``: minimum curvature,
 dogleg severity, TVD) and :class:`~frictionsim.SoftString` (``soft_string.hpp``: Johancsik, Friesen & Dawson 1984,
 SPE 11380, with the friction split between axial and circumferential sliding by the sliding-velocity vector),
 on a :class:`~frictionsim.DrillString` of :class:`~frictionsim.PipeSection`. This module reads survey files, runs

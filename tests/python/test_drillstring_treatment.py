@@ -88,7 +88,7 @@ def test_a_mixed_case_with_the_bit_on_bottom_is_the_torsional_string_built_by_ha
 @pytest.mark.parametrize("old, new, key, words", [
     ('treatment = "captured"', 'treatment = "implicit"', "rig.treatment", "exact, captured, mixed"),
     ("elements = 60", "elements = 60\ntorque_limit = 6e4", "rig.torque_limit", "treatment 'captured' cannot"),
-    ("elements = 60", "elements = 60\ndamping_time = 2e-3", "rig.damping_time", "treatment 'captured' cannot"),
+    ("elements = 60", "elements = 60\ninitial_speed = 1.0", "rig.initial_speed", "treatment 'captured' cannot"),
     ('treatment = "captured"', 'treatment = "exact"', "rig.damping_rate", "treatment 'exact' cannot"),
     ('type = "coulomb"\nmu = 0.2\nmu_static = 0.3', 'type = "dahl"\nmu = 0.2\ntangential_stiffness = 1e4',
      "friction.type", "coulomb under treatment captured"),
@@ -128,3 +128,92 @@ def test_the_well_b_example_runs_and_sticks_and_slips(tmp_path):
     assert {"summary.csv", "bit_speed.png", "metadata.json"} <= names
     frame = run.runs[0].timeseries()
     assert {"bit_speed", "top_drive_speed", "motor_torque"} <= set(frame.columns)
+
+
+# ---- one string model, three treatments (issue 22 item 1)
+
+WELL = dict(elements=16, inclination=1.0, surface_speed=4.0, top_drive_inertia=300.0, proportional_gain=3e3,
+            integral_gain=1e3, damping_time=2e-3)
+
+
+@pytest.mark.parametrize("contacts, on_bottom, chosen", [
+    (10, True, "exact"), (10, False, "exact"), (30, True, "exact"), (31, True, "mixed"), (100, True, "mixed"),
+    (100, False, "captured"), (300, True, "mixed"), (301, True, "captured"), (1000, True, "captured"),
+])
+def test_the_automatic_treatment_follows_the_measured_rule(contacts, on_bottom, chosen):
+    # bench/mixed.bench.cpp: exact cheapest at 10 contacts, mixed at 100 (bit on bottom), captured at 1000
+    assert ds.automatic_treatment(contacts, on_bottom) == chosen
+
+
+def test_string_treatment_auto_picks_each_treatment_where_it_should():
+    bit = fs.NavarroLopezBit()
+    assert ds.string_treatment("auto", elements=20) == "exact"
+    assert ds.string_treatment("auto", elements=101, bit=bit, weight_on_bit=5e4) == "mixed"  # 100 walls + the bit
+    assert ds.string_treatment("auto", elements=100) == "captured"  # off bottom mixed is captured
+    assert ds.string_treatment("auto", elements=1000, bit=bit, weight_on_bit=5e4) == "captured"
+    # a keyword only one engine takes chooses it
+    assert ds.string_treatment("auto", elements=1000, axial=True) == "exact"
+    assert ds.string_treatment("auto", elements=10, stick_band_speed=1.5) == "captured"
+    assert ds.string_treatment("auto", elements=10, stick_band_speed=1.5, bit=bit, weight_on_bit=5e4) == "mixed"
+    assert ds.string_treatment("captured", elements=10) == "captured"
+    with pytest.raises(fs.InvalidParameterError) as error:
+        ds.string_treatment("implicit")
+    assert error.value.parameter == "treatment"
+
+
+def test_one_string_model_builds_each_treatment_and_counts_stuck_walls_alike():
+    """The same string (StringRig keywords, a Coulomb wall law) built exact and captured: the physics carried over
+    (damping_time, the PI, the walls' coefficients), and both Results' mode column counts the wall contacts at rest
+    (all stuck at rest, none once the string slides at the set speed). Their agreement as h shrinks is
+    tests/mixed_treatment.test.cpp's [treatments] case (a well vertical at the top: StringRig has no wall at node 0,
+    the top drive's, where a straight inclined well gives the captured string half an element's)."""
+    string, walls = fs.DrillString([fs.PipeSection(length=1000.0)]), fs.Coulomb(0.18, 0.3)
+    exact = ds.string_model(string, walls, treatment="exact", **WELL)
+    captured = ds.string_model(string, walls, treatment="captured", **WELL)
+    assert isinstance(exact, fs.StringRig) and isinstance(captured, fs.TorsionalString)
+    assert ds.string_model(string, walls, **WELL).__class__ is fs.StringRig  # auto: 16 contacts -> exact
+    assert captured.damping_time == exact.damping_time == 2e-3
+    assert captured.speed_setpoint == exact.surface_speed == 4.0
+    assert captured.friction_coefficient == 0.3 and captured.kinetic_ratio == pytest.approx(0.6)
+    assert list(exact.contact_nodes) == list(range(1, 17))
+    assert list(captured.contact_nodes) == list(range(0, 17))  # node 0's half element inclined too
+    times = np.linspace(0.0, 10.0, 501)
+    for model, options in ((exact, dict(rtol=1e-8, atol=1e-8)), (captured, dict(method="moreau_jean", step=1e-3))):
+        run = fs.simulate(model, 10.0, output_times=times, **options)
+        stuck = ds.stuck_contacts(run)
+        assert stuck[0] == ds.wall_contacts(model) == len(model.contact_nodes)
+        assert stuck[-1] == 0 and np.all((stuck >= 0) & (stuck <= ds.wall_contacts(model)))
+    with pytest.raises(fs.InvalidParameterError) as error:
+        ds.string_model(string, walls, treatment="captured", torque_limit=1e4, **WELL)
+    assert error.value.parameter == "torque_limit"
+
+
+def test_the_torsional_string_takes_the_one_survey_type():
+    """fs.Survey or (measured_depth, inclination): the same well in one vertical plane gives the same bounds bit for
+    bit; a survey whose azimuth turns gives the minimum-curvature arc's inclination."""
+    md, inc = [0.0, 200.0, 500.0, 1200.0], [0.0, 0.0, 1.0, 1.0]
+    string = fs.DrillString([fs.PipeSection(length=1000.0)])
+    pair = fs.TorsionalString(string, elements=40, survey=(md, inc))
+    survey = fs.TorsionalString(string, elements=40, survey=fs.Survey(md, inc, [0.3] * 4))
+    assert np.array_equal(np.asarray(pair.static_friction_torque), np.asarray(survey.static_friction_torque))
+    assert isinstance(survey.survey, fs.Survey) and pair.survey == (md, inc)
+    turning = fs.TorsionalString(string, elements=40, survey=fs.Survey(md, inc, [0.0, 0.0, 0.0, 1.5]))
+    assert not np.array_equal(np.asarray(turning.static_friction_torque), np.asarray(pair.static_friction_torque))
+    assert np.asarray(turning.static_friction_torque)[:8].tolist() == np.asarray(pair.static_friction_torque)[:8].tolist()
+    with pytest.raises(fs.InvalidParameterError) as error:
+        fs.TorsionalString(string, elements=40, survey=([0.0, 300.0, 200.0], [0.0, 0.5, 0.5]))
+    assert "survey" in error.value.parameter
+
+
+def test_a_scenario_with_treatment_auto_resolves_by_the_rule():
+    auto = _with(CAPTURED, 'treatment = "captured"', 'treatment = "auto"')
+    large = scenario.loads(_with(auto, "elements = 60", "elements = 400"))
+    assert large.cases[0].rig.params["treatment"] == "captured"
+    small = scenario.loads(_with(_with(_with(auto, "damping_rate = 0.05\n", ""), "step = 2e-3\n", ""),
+                                 "elements = 60", "elements = 20"))
+    assert small.cases[0].rig.params["treatment"] == "exact"
+    run = scenario.run_case(small.cases[0])
+    assert isinstance(run.rig, fs.StringRig) and len(run.rig.contact_nodes) == 20
+    # damping_rate, a key only the captured string takes, chooses it at 20 contacts too
+    keyed = scenario.loads(_with(_with(auto, "elements = 60", "elements = 20"), "step = 2e-3", "step = 2e-3"))
+    assert keyed.cases[0].rig.params["treatment"] == "captured"

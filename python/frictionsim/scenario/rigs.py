@@ -20,7 +20,7 @@ from typing import Any, Callable, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .. import _core, laws, units
+from .. import _core, drillstring, laws, units
 from ..errors import InvalidParameterError
 from ..torsional import fig7_friction
 from .analyses import CYCLE_MEAN, LIMIT_CYCLE, STICK_SLIP, Analysis
@@ -288,7 +288,10 @@ class DrillStringKind(RigKind):
     * ``treatment``: "exact" (the StringRig) or "captured" / "mixed": a :class:`~frictionsim.TorsionalString`
       run by Moreau-Jean with ``solver.step``, built from :data:`SHARED` (StringRig name -> its name), its own
       table's other keywords (:attr:`captured_keys`) and the walls of a coulomb law (:meth:`wall_coefficients`);
-      the other treatment's keys are refused, and so is a stick-slip map (it reruns the exact rig);
+      the other treatment's keys are refused, and so is a stick-slip map (it reruns the exact rig); or "auto":
+      the measured rule of :func:`frictionsim.drillstring.automatic_treatment` on the string's wall contacts (``elements``,
+      less the bit's node on bottom): exact up to 30, mixed up to 300 with the bit on bottom, captured beyond;
+      keys that only one treatment takes choose it;
     * friction: the wall contacts' law, any engine law (coulomb, stribeck, dahl, lugre, ...);
     * analysis: the bit's stick-slip after ``transient`` [s] (default t_end / 2) and, with ``surface_speeds``
       [rad/s] and ``weights_on_bit`` [N], the stick-slip map over that grid
@@ -303,12 +306,9 @@ class DrillStringKind(RigKind):
     name, engine, analysis = "drillstring", _core.StringRig, STICK_SLIP
     plots = ("bit_speed", "stick_slip_map")
     #: ``treatment``: "exact" (every contact located as an event: StringRig) or a time-stepping TorsionalString's
-    TREATMENTS = ("exact", "captured", "mixed")
+    TREATMENTS = ("exact", "captured", "mixed", "auto")
     #: The StringRig keys a TorsionalString takes for the same physics under another name (its table's)
-    SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elements": "elements",
-              "bit": "bit", "weight_on_bit": "weight_on_bit", "inclination": "inclination",
-              "mud_density": "mud_density", "top_drive_inertia": "top_drive_inertia",
-              "proportional_gain": "proportional_gain", "integral_gain": "integral_gain"}
+    SHARED = drillstring.SHARED
     #: TorsionalString keys the scenario gives elsewhere: [friction] (a coulomb law's mu_static, mu / mu_static)
     #: and the shared keys' StringRig names
     _FROM_FRICTION = ("friction_coefficient", "kinetic_ratio")
@@ -350,7 +350,7 @@ class DrillStringKind(RigKind):
 
     @staticmethod
     def treatment(spec) -> str:
-        """The spec's contact treatment: "exact" (default), "captured" or "mixed"."""
+        """The spec's contact treatment: "exact" (default), "captured" or "mixed" ("auto" resolved when checked)."""
         return spec.params.get("treatment", "exact")
 
     def time_stepping(self, spec) -> bool:
@@ -361,6 +361,8 @@ class DrillStringKind(RigKind):
         treatment = params.get("treatment", "exact")
         if treatment not in self.TREATMENTS:
             raise parser.error(paths["treatment"], f"must be one of {', '.join(self.TREATMENTS)} (got {treatment!r})")
+        if treatment == "auto":
+            treatment = params["treatment"] = self._automatic(params)
         if treatment != "exact" and getattr(_core, "TorsionalString", None) is None:
             raise parser.error(paths["treatment"], f"treatment {treatment!r} needs the engine built with Eigen "
                                                    f"(frictionsim.HAS_EIGEN is False)")
@@ -372,6 +374,14 @@ class DrillStringKind(RigKind):
                 raise parser.error(paths[key], f"treatment {treatment!r} cannot take it (a key of the {other} "
                                                f"treatment; the {treatment} treatment takes: "
                                                f"{', '.join(k for k in self.keys if k in allowed)})")
+
+    def _automatic(self, params) -> str:
+        """treatment = "auto": :func:`frictionsim.drillstring.string_treatment` on the rig keys (the measured rule
+        on the wall contacts; a key only one treatment takes chooses it)."""
+        keys = {k: v for k, v in params.items() if k not in ("sections", "treatment")}
+        if "bit" in keys and "weight_on_bit" not in keys:
+            keys["weight_on_bit"] = 1.0  # a bit given is on bottom (its weight is checked below)
+        return drillstring.string_treatment("auto", **keys)
 
     def _table(self, parser, value, cls, path: str, paths: Dict[str, str]):
         """A table of ``cls``'s keys (a PipeSection or the bit), checked by building it."""
@@ -428,22 +438,13 @@ class DrillStringKind(RigKind):
         string = _core.DrillString([_core.PipeSection(**section) for section in params.pop("sections")])
         if "bit" in params:
             params["bit"] = _core.NavarroLopezBit(**params["bit"])
-        treatment = params.pop("treatment", "exact")
-        if treatment == "exact":
-            return self.engine(string, friction, **params)
-        captured = {self.SHARED.get(key, key): value for key, value in params.items()}
-        captured.update(self.wall_coefficients(friction))
-        return _core.TorsionalString(string, treatment=treatment, **captured)
+        return drillstring.string_model(string, friction, treatment=params.pop("treatment", "exact"), **params)
 
     @staticmethod
     def wall_coefficients(friction) -> Dict[str, float]:
-        """A TorsionalString's wall friction from the [friction] law: a Coulomb law's static coefficient is its
-        friction_coefficient mu, its kinetic one over that the kinetic_ratio f_rat (A&S eq 4)."""
-        if not isinstance(friction, _core.Coulomb):
-            raise InvalidParameterError(f"friction: must be coulomb under treatment captured or mixed (A&S eq 4: "
-                                        f"static mu, kinetic f_rat mu; got {type(friction).__name__})", "friction")
-        mu_s, mu_k = float(friction.mu_static), float(friction.mu)
-        return {"friction_coefficient": mu_s, "kinetic_ratio": mu_k / mu_s if mu_s > 0 else 1.0}
+        """A TorsionalString's wall friction from the [friction] law (:func:`frictionsim.drillstring.
+        wall_coefficients`)."""
+        return drillstring.wall_coefficients(friction)
 
     def describe(self, spec) -> str:
         treatment = self.treatment(spec)
