@@ -131,7 +131,9 @@ struct TorqueConvention {
 };
 constexpr TorqueConvention torque_conventions[] = {
     {"detournay_defourny", DetournayBit::detournay_defourny_constant, DetournayBit::detournay_defourny_constant,
-     "T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007)"},
+     "T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007; the "
+     "open Simulator4nDOF's Detournay.cs, whose own speed factors - (w^2 / (w^2 + (0.4 pi)^2)) on the cutting "
+     "torque, (1 + exp(-mu w / 2 pi)) / 2 on the wear flats' - this law does not carry)"},
     {"unit", DetournayBit::unit_constant, DetournayBit::unit_constant,
      "T = eps a^2 d + gamma mu a W_f (codes that drop the half)"},
     {"half_cutting", DetournayBit::detournay_defourny_constant, DetournayBit::unit_constant,

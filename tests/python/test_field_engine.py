@@ -153,6 +153,39 @@ def test_a_codes_convention_gives_that_codes_torque(convention):
     assert eval(repr(bit), {"DetournayBit": fs.DetournayBit}).torque_on_bit(1e-3) == bit.torque_on_bit(1e-3)
 
 
+def _simulator4ndof_bit(depth, angular_speed):
+    """The open Simulator4nDOF's drag bit (Open-Source-Drilling-Community, Simulator/BitRockModels/Detournay.cs), as
+    that code writes it: d = blades x its per-blade depth, the depth per revolution; its cutting torque carries the factor
+    w^2 / (w^2 + (0.4 pi)^2) and its wear flats' torque (1 + exp(-mu w / 2 pi)) / 2."""
+    a, eps, zeta = CODE["bit_radius"], CODE["intrinsic_specific_energy"], CODE["cutting_force_ratio"]
+    sigma, l, mu, gamma = (CODE["contact_strength"], CODE["wearflat_length"], CODE["friction_coefficient"],
+                           CODE["contact_orientation"])
+    d = max(depth, 0.0)
+    reg = angular_speed / math.sqrt(angular_speed**2 + (2.0 * math.pi * 0.2) ** 2)
+    w_f = a * l * sigma
+    t_f = 0.5 * (1.0 + math.exp(-mu * angular_speed / (2.0 * math.pi))) * gamma * mu * a / 2.0 * w_f
+    return d * a * zeta * eps + w_f, d * a * a * eps / 2.0 * reg**2 + t_f
+
+
+def test_simulator4ndof_writes_the_detournay_defourny_constants():
+    # Its constants are 1/2 on both torque terms; its speed factors are regularisations this law does not carry, so
+    # the two agree term by term where those factors are 1: the cutting torque fast (w -> inf), the wear flats' at rest.
+    bit = fs.DetournayBit.from_convention("detournay_defourny", **CODE)
+    for d in (0.0, 3e-4, 2e-3):
+        weight, _ = _simulator4ndof_bit(d, 10.0)
+        assert bit.weight_on_bit(d) == pytest.approx(weight, rel=1e-14)
+        cutting_fast = _simulator4ndof_bit(d, 1e7)[1] - _simulator4ndof_bit(0.0, 1e7)[1]
+        assert bit.torque_on_bit(d) - bit.contact_torque == pytest.approx(cutting_fast, rel=1e-12)
+    assert bit.contact_torque == pytest.approx(_simulator4ndof_bit(0.0, 0.0)[1], rel=1e-14)
+    # at drilling speed its wear flats rub less than this law's: the factor (1 + e^(-mu w / 2 pi)) / 2 < 1
+    w = 10.0
+    factor = 0.5 * (1.0 + math.exp(-CODE["friction_coefficient"] * w / (2.0 * math.pi)))
+    cut = bit.torque_on_bit(1e-3) - bit.contact_torque
+    reg2 = w * w / (w * w + (0.4 * math.pi) ** 2)
+    assert _simulator4ndof_bit(1e-3, w)[1] == pytest.approx(cut * reg2 + factor * bit.contact_torque, rel=1e-13)
+    assert "Simulator4nDOF" in fs.DetournayBit.CONVENTIONS["detournay_defourny"][2]
+
+
 def test_the_conventions_differ_as_their_constants_say():
     c = fs.DetournayBit.CONVENTIONS
     assert c["detournay_defourny"][:2] == (0.5, 0.5) and c["unit"][:2] == (1.0, 1.0) and c["half_cutting"][:2] == (0.5, 1.0)
