@@ -205,7 +205,8 @@ TEST_CASE("Aarsnes-Shor Well B: top-drive twist (eq 29), build-up time (34), fun
     CHECK(published.period_estimate() == Approx(published.build_up_time() + published.fundamental_period()));
 }
 
-TEST_CASE("Aarsnes-Shor Well B side by side with the published code at its grid (1000 cells)", "[aarsnes_shor]") {
+TEST_CASE("Aarsnes-Shor Well B side by side with the published code at its grid (1000 cells)",
+          "[aarsnes_shor][heavy]") {
     // The same physics (friction profile, inertias, stiffnesses, the code's damping rate and collar wave speed, the
     // sampled PI) on 1000 cells; different discretisations: the published code is first-order upwind on Riemann
     // invariants (CFL sub-steps of 1/1200 s, friction projected per sub-step), frictionsim a lumped string with the
@@ -269,7 +270,7 @@ TEST_CASE("Aarsnes-Shor Well B side by side with the published code at its grid 
 }
 
 TEST_CASE("Aarsnes-Shor Well B: frictionsim converges in N and in h (the published code, as published, does not)",
-          "[aarsnes_shor]") {
+          "[aarsnes_shor][heavy]") {
     // The limit cycle's mean bit peak speed and period (published pi factor and collar), from 250 to 1000 elements
     // at h = 2 ms, and h from 5 ms to 1.25 ms at 250 elements: all within the cycle-to-cycle scatter and 1.5 %.
     const CycleFigures n1000 = cycle_figures(run(CollarPolarMoment::as_published, 1000, 2e-3));

@@ -187,7 +187,7 @@ TEST_CASE("mixed treatment: TorsionalString and StringRig lump the same string (
 }
 
 TEST_CASE("mixed treatment: all-captured and mixed converge to the event-driven StringRig, the mixed bit closer",
-          "[mixed]") {
+          "[mixed][heavy]") {
     // 16 elements, walls at mu_s 0.1 sticking and slipping at every node below the vertical top, the bit in
     // stick-slip: its first six switches (three cycles) and its speed against Dormand-Prince at 1e-12
     const Case c(16, 0.1);
