@@ -3,10 +3,12 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <frictionsim/analysis/cycle_mean.hpp>
 #include <frictionsim/analysis/limit_cycle.hpp>
+#include <frictionsim/rigs/rigs.hpp>
 #include <frictionsim/simulate.hpp>
 
 using namespace frictionsim;
@@ -103,6 +105,52 @@ void torsional_stick_slip(benchmark::State& state, Law law, Method method) {
     const std::vector<double> w = r.column_values("disc_speed");
     report(state, r, limit_cycle(r.t.data(), w.data(), r.rows(), 15.0).frequency);
 }
+
+/// Every rig of EngineRigs at its table's defaults, 1 s from its initial state on `method` (rtol 1e-8): the law
+/// rigs with Coulomb static > kinetic friction (mu 0.3, mu_s 0.4), the kinematic rig under the paper-000 harmonic
+/// sliding velocity (v_d 1 mm/s, v_a 0.1 m/s, 17 Hz) and 90 N. Registered from the list, so a rig added there is
+/// timed too: rigs/<rig's Python name>/<method>. `value` is the last friction force.
+template <class Rig>
+void rig_at_defaults(benchmark::State& state, const Rig& rig, Method method) {
+    SolverOptions o;
+    o.method = method;
+    o.rtol = 1e-8;
+    o.atol = 1e-12;
+    o.output_times = {1.0};
+    Result r;
+    for (auto _ : state) {
+        r = simulate(rig, 1.0, o);
+        benchmark::DoNotOptimize(r.states.data());
+    }
+    report(state, r, r.friction_force.back());
+}
+
+template <class Entry>
+void register_rig_benchmarks(Method method) {
+    const std::string name = std::string("rigs/") + Entry::name + "/" + method_name(method);
+    if constexpr (Entry::construction == RigConstruction::law) {
+        using Rig = typename Entry::template of<Coulomb>;
+        benchmark::RegisterBenchmark(name.c_str(), [method](benchmark::State& s) {
+            rig_at_defaults(s, Rig(typename Entry::Params{}, Coulomb(0.3, 0.4)), method);
+        })->Unit(benchmark::kMillisecond);
+    } else if constexpr (Entry::construction == RigConstruction::table) {
+        benchmark::RegisterBenchmark(name.c_str(), [method](benchmark::State& s) {
+            rig_at_defaults(s, typename Entry::type(typename Entry::Params{}), method);
+        })->Unit(benchmark::kMillisecond);
+    } else {
+        using Rig = typename Entry::template of<Coulomb, HarmonicSlidingVelocity>;
+        benchmark::RegisterBenchmark(name.c_str(), [method](benchmark::State& s) {
+            const HarmonicSlidingVelocity v(1e-3, 0.1, 2.0 * pi * 17.0);
+            rig_at_defaults(s, Rig(Coulomb(0.3, 0.4), v, ConstantSignal(90.0)), method);
+        })->Unit(benchmark::kMillisecond);
+    }
+}
+
+[[maybe_unused]] const bool every_rig_registered = [] {
+    for (const Method method : {Method::dormand_prince, Method::cvode_bdf})
+        for_each_type(EngineRigs{}, [&](auto tag) { register_rig_benchmarks<typename decltype(tag)::type>(method); });
+    return true;
+}();
 
 }  // namespace
 

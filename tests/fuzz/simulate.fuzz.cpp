@@ -1,7 +1,9 @@
 // Fuzz target (issue 11): bytes -> a friction law, a rig and solver options -> construct and run a short
 // simulation; a first byte 0xFF draws a field model instead (issue 22): the Aarsnes-Shor TorsionalString with its
-// treatment (captured / exact bit, on or off bottom) and a time-stepping method, or a Navarro-Lopez rig. Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a stop with
-// its time and partial result), or a completed Result whose every value is finite. Anything else (a crash, a
+// treatment (captured / exact bit, on or off bottom) and a time-stepping method, or a rig of EngineRigs built from
+// its table alone (the Navarro-Lopez strings). Every rig drawn is an entry of EngineRigs (rigs/rigs.hpp), so a rig
+// added there is fuzzed. Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a
+// stop with its time and partial result), or a completed Result whose every value is finite. Anything else (a crash, a
 // sanitizer report, another exception, a "completed" run with NaN) aborts, so libFuzzer reports it.
 //
 // Built two ways: with clang's libFuzzer (scripts/fuzz), and as a plain program that replays files given on the
@@ -17,7 +19,7 @@
 #include <iterator>
 #include <vector>
 
-#include <frictionsim/rigs/navarro_lopez.hpp>
+#include <frictionsim/rigs/rigs.hpp>
 #include <frictionsim/simulate.hpp>
 #include <frictionsim/string/torsional_string.hpp>
 
@@ -77,25 +79,29 @@ Params params_from(const Fields& fields, Bytes& in) {
     return p;
 }
 
+/// A rig of EngineRigs built with `law`: the law rigs in the list's order, then the kinematic rig (the byte layout
+/// of the seed corpus: its index comes after the law rigs').
 template <class Law>
 void run_rigs(const Law& law, Bytes& in) {
+    constexpr std::size_t law_rigs = count_rigs<RigConstruction::law>(EngineRigs{});
     const SolverOptions o = options(in);
     const double t_end = in.byte() & 1 ? in.number() : 0.05;
-    const std::size_t which = in.byte() % (TabledRigs::size + 1);
-    if (which == TabledRigs::size) {  // the kinematic rig, built from signals
+    const std::size_t which = in.byte() % (law_rigs + 1);
+    if (which == law_rigs) {  // the kinematic rig, built from signals
         if constexpr (Law::has_stick) {
             if (law.karnopp_band() > 0.0) return;  // rejected by the kinematic rig; checked elsewhere
         }
         const HarmonicSlidingVelocity v(in.number(), in.number(), in.number());
-        require_finite(simulate(KinematicRig<Law, HarmonicSlidingVelocity>(law, v, ConstantSignal(in.number())),
-                                t_end, o));
+        using Kinematic = signal_rig::of<Law, HarmonicSlidingVelocity>;
+        require_finite(simulate(Kinematic(law, v, ConstantSignal(in.number())), t_end, o));
         return;
     }
     std::size_t i = 0;
-    for_each_rig(TabledRigs{}, [&](auto tag) {
-        using Rig = typename decltype(tag)::template of<Law>;
+    for_each_rig<RigConstruction::law>(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        using Rig = typename Entry::template of<Law>;
         if (i++ != which) return;
-        const auto p = params_from<typename Rig::Params>(Rig::Params::fields(), in);
+        const auto p = params_from<typename Entry::Params>(Entry::Params::fields(), in);
         require_finite(simulate(Rig(p, law), t_end, o));
     });
 }
@@ -109,18 +115,18 @@ Law law_from(Bytes& in) {
 /// A time-stepping model: a small TorsionalString (1-16 elements, sections and parameters from their tables), the
 /// bit's treatment, Moreau-Jean or the explicit projection with a drawn step; or a Navarro-Lopez rig on an ODE method.
 void run_field(Bytes& in) {
-    const std::uint8_t which = in.byte() % 3;
-    if (which > 0) {
+    constexpr std::size_t table_rigs = count_rigs<RigConstruction::table>(EngineRigs{});
+    const std::size_t which = in.byte() % (table_rigs + 1);
+    if (which > 0) {  // a rig of EngineRigs built from its table alone (the Navarro-Lopez strings)
         const SolverOptions o = options(in);
         const double t_end = in.byte() & 1 ? in.number() : 0.5;
-        if (which == 1)
-            require_finite(simulate(NavarroLopezRig<NavarroLopez2DofParams>(params_from<NavarroLopez2DofParams>(
-                                        NavarroLopez2DofParams::fields(), in)),
-                                    t_end, o));
-        else
-            require_finite(simulate(NavarroLopezRig<NavarroLopez4DofParams>(params_from<NavarroLopez4DofParams>(
-                                        NavarroLopez4DofParams::fields(), in)),
-                                    t_end, o));
+        std::size_t i = 0;
+        for_each_rig<RigConstruction::table>(EngineRigs{}, [&](auto tag) {
+            using Entry = typename decltype(tag)::type;
+            if (++i != which) return;
+            const auto p = params_from<typename Entry::Params>(Entry::Params::fields(), in);
+            require_finite(simulate(typename Entry::type(p), t_end, o));
+        });
         return;
     }
     std::vector<PipeSection> sections(1 + in.byte() % 2);

@@ -21,6 +21,7 @@
 #include "../parameters.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../contact/switching.hpp"
+#include "outputs.hpp"
 
 namespace frictionsim {
 
@@ -43,7 +44,19 @@ struct AxialRigParams {
     double initial_velocity = 0.0;      ///< x'(0), m/s
 
     /// The numeric parameters (gravity and initial_position, a switch and an optional value, are checked apart).
+    static constexpr const char* rig_name = "AxialVibrationRig";  ///< as Python and the rig list name it
     static constexpr std::array<Field<AxialRigParams>, 8> fields();
+    /// The Result's columns beside t and the law's states (state_names below).
+    static constexpr std::array<RigOutput, 6> outputs() {
+        return {{
+            {"friction_force", "N", "friction force F_F on the specimen"},
+            {"position", "m", "specimen position x"},
+            {"velocity", "m/s", "specimen velocity x'"},
+            {"friction_impulse", "N s", "int F_F dt"},
+            {"friction_work", "J", "int F_F v_r dt: dissipated plus stored in the law"},
+            {"drive_work", "J", "int F_d v_d dt = energy change + friction work"},
+        }};
+    }
 };
 
 inline constexpr std::array<Field<AxialRigParams>, 8> AxialRigParams::fields() {

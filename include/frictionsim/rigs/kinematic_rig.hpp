@@ -30,9 +30,20 @@
 #include "../detail/validate.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../contact/switching.hpp"
+#include "outputs.hpp"
 #include "signals.hpp"
 
 namespace frictionsim {
+
+/// The kinematic rig's Result columns beside t and the law's states (state_names below). It has no parameter
+/// table (its inputs are signals), so its outputs stand here, first in the header.
+constexpr std::array<RigOutput, 3> kinematic_rig_outputs() {
+    return {{
+        {"friction_force", "N", "friction force F under the prescribed v_r(t), N(t)"},
+        {"friction_impulse", "N s", "int F dt"},
+        {"friction_work", "J", "int F v_r dt: dissipated plus stored in the law"},
+    }};
+}
 
 template <class Law, class RelativeVelocity, class NormalForce = ConstantSignal>
 class KinematicRig {

@@ -46,6 +46,7 @@
 #include "../friction/law.hpp"
 #include "../parameters.hpp"
 #include "../contact/lcp.hpp"
+#include "outputs.hpp"
 
 namespace frictionsim {
 
@@ -69,7 +70,20 @@ struct NavarroLopez2DofParams {
     double weight_on_bit = 30e3;            ///< W, N
     double initial_speed = 0.0;             ///< every inertia's speed at t = 0, rad/s (springs untwisted)
 
+    static constexpr const char* rig_name = "NavarroLopez2Dof";  ///< as Python and the rig list name it
     static constexpr std::array<Field<NavarroLopez2DofParams>, 15> fields();
+    /// The Result's columns beside t (NavarroLopezRig::state_names; the bit law has no states).
+    static constexpr std::array<RigOutput, 7> outputs() {
+        return {{
+            {"friction_force", "N m", "the bit's torque T_b"},
+            {"table_speed", "rad/s", "rotary table speed"},
+            {"bit_speed", "rad/s", "bit speed"},
+            {"string_twist", "rad", "twist of the string, table - bit"},
+            {"motor_work", "J", "int u w_0 dt = stored energy change + damping work + friction work"},
+            {"damping_work", "J", "int [c_r w_0^2 + sum d_i (w_i - w_i+1)^2] dt"},
+            {"friction_work", "J", "int sum T_i w_i dt: the bit's (and the pipe walls') friction"},
+        }};
+    }
 };
 
 /// 4-DOF string: rotary table, two pipe inertias, bit (Navarro-Lopez & Cortes 2007; public code, see the header).
@@ -98,7 +112,24 @@ struct NavarroLopez4DofParams {
     double weight_on_bit = 30e3;            ///< W, N
     double initial_speed = 0.0;             ///< rad/s
 
+    static constexpr const char* rig_name = "NavarroLopez4Dof";  ///< as Python and the rig list name it
     static constexpr std::array<Field<NavarroLopez4DofParams>, 22> fields();
+    /// The Result's columns beside t (NavarroLopezRig::state_names; the bit law has no states).
+    static constexpr std::array<RigOutput, 11> outputs() {
+        return {{
+            {"friction_force", "N m", "the bit's torque T_b"},
+            {"table_speed", "rad/s", "rotary table speed"},
+            {"upper_pipe_speed", "rad/s", "upper pipe inertia's speed"},
+            {"lower_pipe_speed", "rad/s", "lower pipe inertia's speed"},
+            {"bit_speed", "rad/s", "bit speed"},
+            {"table_twist", "rad", "twist of the spring table - upper pipe"},
+            {"pipe_twist", "rad", "twist of the spring upper - lower pipe"},
+            {"bit_twist", "rad", "twist of the spring lower pipe - bit"},
+            {"motor_work", "J", "int u w_0 dt = stored energy change + damping work + friction work"},
+            {"damping_work", "J", "int [c_r w_0^2 + sum d_i (w_i - w_i+1)^2] dt"},
+            {"friction_work", "J", "int sum T_i w_i dt: the bit's (and the pipe walls') friction"},
+        }};
+    }
 };
 
 namespace detail {

@@ -1,35 +1,78 @@
-// The list of the engine's rigs that a parameter table and a law build (Rig<Law>(Params, law)): what code that
-// enumerates rigs reads (the fuzz target; the Python bindings bind each with bind_rig). The kinematic rig is built
-// from signals, not a table, and stands apart.
+// The engine's rigs, one list: what code that enumerates rigs reads (the Python bindings register each, the fuzz
+// target draws from them, bench/integrators runs each). An entry names the rig and how it is built:
+//   law_rig<Rig, Params>    Rig<Law>(Params, law): a parameter table and any friction law
+//   table_rig<Rig, Params>  Rig(Params): the table alone (a law of its own inside, e.g. the Navarro-Lopez bit)
+//   signal_rig              the kinematic rig: a law driven by prescribed signals, no table
+// Each entry gives its outputs (name, SI unit, meaning of each Result column beside t and the law's states).
+// Adding a rig: its header, then one line in EngineRigs (docs/architecture.md, "Adding a rig").
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <utility>
 
+#include "../friction/laws.hpp"
 #include "axial_rig.hpp"
+#include "kinematic_rig.hpp"
+#include "navarro_lopez.hpp"
+#include "outputs.hpp"
 #include "torsional_rig.hpp"
 
 namespace frictionsim {
 
-template <template <class> class... Rig>
-struct RigList {
-    static constexpr std::size_t size = sizeof...(Rig);
-};
+enum class RigConstruction { law, table, signal };
 
-/// A value standing for a rig template: f(rig_tag<AxialRig>{}), then `typename decltype(tag)::template of<Law>`.
-template <template <class> class Rig>
-struct rig_tag {
+/// A rig built from its parameter table and a friction law: `typename Entry::template of<Law>`.
+template <template <class> class Rig, class P>
+struct law_rig {
+    static constexpr RigConstruction construction = RigConstruction::law;
     template <class Law>
     using of = Rig<Law>;
+    using Params = P;
+    static constexpr const char* name = P::rig_name;  ///< its Python class's name
+    static constexpr auto outputs() { return P::outputs(); }
 };
 
-/// Calls f(rig_tag<Rig>{}) for every rig of the list, in order.
-template <template <class> class... Rig, class F>
-void for_each_rig(RigList<Rig...>, F&& f) {
-    (f(rig_tag<Rig>{}), ...);
+/// A rig built from its parameter table alone.
+template <class Rig, class P>
+struct table_rig {
+    static constexpr RigConstruction construction = RigConstruction::table;
+    using type = Rig;
+    using Params = P;
+    static constexpr const char* name = P::rig_name;  ///< its Python class's name
+    static constexpr auto outputs() { return P::outputs(); }
+};
+
+/// The kinematic rig: a law under a prescribed relative velocity and normal force (`of<Law, V, N>`).
+struct signal_rig {
+    static constexpr RigConstruction construction = RigConstruction::signal;
+    static constexpr const char* name = "KinematicRig";
+    template <class Law, class RelativeVelocity, class NormalForce = ConstantSignal>
+    using of = KinematicRig<Law, RelativeVelocity, NormalForce>;
+    static constexpr auto outputs() { return kinematic_rig_outputs(); }
+};
+
+/// Every rig of the engine, in the order Python binds them (fs.RIGS; the string models stand apart, in string/).
+using EngineRigs = TypeList<law_rig<AxialRig, AxialRigParams>,      //
+                            signal_rig,                              //
+                            law_rig<TorsionalRig, TorsionalRigParams>,  //
+                            table_rig<NavarroLopez2Dof, NavarroLopez2DofParams>,
+                            table_rig<NavarroLopez4Dof, NavarroLopez4DofParams>>;
+
+/// How many entries of `Rigs` are built as `kind`.
+template <RigConstruction kind, class... Entry>
+constexpr std::size_t count_rigs(TypeList<Entry...>) {
+    return ((Entry::construction == kind ? 1 : 0) + ... + 0);
 }
 
-/// Rigs built from a Params struct with a fields() table and a law.
-using TabledRigs = RigList<AxialRig, TorsionalRig>;
+/// Calls f(type_tag<Entry>{}) for every entry of `Rigs` built as `kind`, in order.
+template <RigConstruction kind, class... Entry, class F>
+void for_each_rig(TypeList<Entry...>, F&& f) {
+    (
+        [&] {
+            if constexpr (Entry::construction == kind) f(type_tag<Entry>{});
+        }(),
+        ...);
+}
 
 }  // namespace frictionsim

@@ -43,6 +43,7 @@
 #include "../detail/validate.hpp"
 #include "../parameters.hpp"
 #include "../contact/disc_contact.hpp"
+#include "outputs.hpp"
 
 namespace frictionsim {
 
@@ -67,7 +68,25 @@ struct TorsionalRigParams {
     double initial_disc_speed = 0.0;              ///< w2(0), rad/s
     double initial_drive_speed = 0.0;             ///< w3(0), rad/s
 
+    static constexpr const char* rig_name = "TorsionalRig";  ///< as Python and the rig list name it
     static constexpr std::array<Field<TorsionalRigParams>, 18> fields();
+    /// The Result's columns beside t and the law's states (state_names below).
+    static constexpr std::array<RigOutput, 12> outputs() {
+        return {{
+            {"friction_force", "N m", "friction torque on the disc"},
+            {"disc_angle", "rad", "disc angle"},
+            {"disc_speed", "rad/s", "disc speed w2"},
+            {"shaft_twist", "rad", "twist of the shaft between drive and disc"},
+            {"drive_speed", "rad/s", "drive speed w3 (load side)"},
+            {"current", "A", "motor current"},
+            {"speed_error_integral", "rad", "int (w_ref - w3) dt of the PI speed loop"},
+            {"motor_work", "J", "int eta K_T i w3 dt: stored energy change + friction + damping work"},
+            {"friction_work", "J", "int T_f2 w2 dt, dissipated at the disc"},
+            {"damping_work", "J", "the shaft's and the motor's viscous and Coulomb losses"},
+            {"electrical_work", "J", "int V i dt into the armature"},
+            {"ohmic_work", "J", "int R i^2 dt in the armature"},
+        }};
+    }
 };
 
 /// The parameter table of TorsionalRigParams: validation, Python keywords, properties, repr and pickling read it.

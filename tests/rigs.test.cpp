@@ -1,0 +1,135 @@
+// The rig list (rigs/rigs.hpp): every entry declares the units of its outputs, matching the states its rig names;
+// and a toy rig written as a new rig would be (tests/rigs/belt_rig.hpp) runs through simulate() and through the
+// same generic code the fuzz target and the benchmarks use for EngineRigs, against its closed-form stick-slip period.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <frictionsim/frictionsim.hpp>
+#include <frictionsim/rigs/rigs.hpp>
+#include <frictionsim/simulate.hpp>
+
+#include "rigs/belt_rig.hpp"
+
+using namespace frictionsim;
+
+namespace {
+
+/// The states a rig of `Entry` names (with Coulomb, which has none, for the law-built ones).
+template <class Entry>
+std::vector<std::string> state_names_of() {
+    std::vector<std::string> out;
+    const auto add = [&](const auto& rig) {
+        for (const char* n : rig.state_names()) out.emplace_back(n);
+    };
+    if constexpr (Entry::construction == RigConstruction::law)
+        add(typename Entry::template of<Coulomb>(typename Entry::Params{}, Coulomb(0.3, 0.4)));
+    else if constexpr (Entry::construction == RigConstruction::table)
+        add(typename Entry::type(typename Entry::Params{}));
+    else
+        add(typename Entry::template of<Coulomb, ConstantSignal>(Coulomb(0.3), ConstantSignal(0.1),
+                                                                 ConstantSignal(1.0)));
+    return out;
+}
+
+/// The outputs table of `Entry` covers exactly its states plus friction_force, each once, each with a unit.
+template <class Entry>
+void check_outputs() {
+    INFO(Entry::name);
+    std::set<std::string> declared;
+    for (const RigOutput& o : Entry::outputs()) {
+        CHECK(std::string(o.unit) != "");
+        CHECK(std::string(o.what) != "");
+        CHECK(declared.insert(o.name).second);
+    }
+    std::set<std::string> expected{"friction_force"};
+    for (const std::string& n : state_names_of<Entry>()) expected.insert(n);
+    CHECK(declared == expected);
+    // friction is a force on the lab's sliding rigs, a torque on the rotating ones
+    const std::string unit = Entry::outputs()[0].unit;
+    CHECK(std::string(Entry::outputs()[0].name) == "friction_force");
+    CHECK((unit == "N" || unit == "N m"));
+}
+
+/// The closed-form stick-slip period of a block on a belt with Coulomb friction (mu_k < mu_s, no damping): it
+/// sticks from x = 2 x_k - x_s to x_s = mu_s N / k at the belt's speed, then slips as a harmonic oscillator about
+/// x_k = mu_k N / k (w = sqrt(k / m)) until x' = v_b again: T = 2 (x_s - x_k) / v_b + (2 pi - 2 phi) / w,
+/// phi = atan2((x_s - x_k) w, v_b).
+double belt_period(const test::BeltRigParams& p, double mu_k, double mu_s) {
+    const double x_s = mu_s * p.normal_force / p.stiffness, x_k = mu_k * p.normal_force / p.stiffness;
+    const double w = std::sqrt(p.stiffness / p.mass);
+    const double phi = std::atan2((x_s - x_k) * w, p.belt_speed);
+    return 2.0 * (x_s - x_k) / p.belt_speed + (2.0 * pi - 2.0 * phi) / w;
+}
+
+}  // namespace
+
+TEST_CASE("every rig of EngineRigs declares its outputs' units, one per state and friction_force", "[rigs]") {
+    STATIC_REQUIRE(EngineRigs::size == 5);
+    STATIC_REQUIRE(count_rigs<RigConstruction::law>(EngineRigs{}) == 2);
+    STATIC_REQUIRE(count_rigs<RigConstruction::table>(EngineRigs{}) == 2);
+    std::vector<std::string> names;
+    for_each_type(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        check_outputs<Entry>();
+        names.emplace_back(Entry::name);
+    });
+    CHECK(names == std::vector<std::string>{"AxialVibrationRig", "KinematicRig", "TorsionalRig", "NavarroLopez2Dof",
+                                            "NavarroLopez4Dof"});
+    CHECK(std::string(AxialRigParams::outputs()[0].unit) == "N");
+    CHECK(std::string(NavarroLopez4DofParams::outputs()[0].unit) == "N m");
+}
+
+TEST_CASE("a toy rig added to a list of rigs runs through the list's generic code at its closed-form period",
+          "[rigs]") {
+    using Rigs = append<EngineRigs, law_rig<test::BeltRig, test::BeltRigParams>>::type;
+    STATIC_REQUIRE(count_rigs<RigConstruction::law>(Rigs{}) == 3);
+    check_outputs<law_rig<test::BeltRig, test::BeltRigParams>>();
+
+    // The fuzz target's and the benchmark's way to build a law rig from an entry: Entry::of<Law>(Params, law).
+    const test::BeltRigParams p{};
+    const double mu_k = 0.3, mu_s = 0.4;
+    std::vector<double> starts;  // times the block starts sticking
+    Result run;
+    std::size_t i = 0;
+    for_each_rig<RigConstruction::law>(Rigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        if (i++ != 2) return;
+        if constexpr (std::is_same_v<typename Entry::Params, test::BeltRigParams>) {
+            SolverOptions o;
+            o.rtol = 1e-10;
+            o.atol = 1e-12;
+            run = simulate(typename Entry::template of<Coulomb>(p, Coulomb(mu_k, mu_s)), 5.0, o);
+        }
+    });
+    REQUIRE(run.completed);
+    for (const Event& e : run.events)
+        if (e.mode_after_name == "stick" && e.time > 0.0) starts.push_back(e.time);
+    REQUIRE(starts.size() >= 5);
+    const double period = belt_period(p, mu_k, mu_s);  // 0.2 + 3 pi / 20 s = 0.6712 s here
+    // the first stick comes from rest (x = 0), the later ones from 2 x_k - x_s: a cycle from the second on
+    for (std::size_t k = 2; k < starts.size(); ++k) CHECK(starts[k] - starts[k - 1] == Approx(period).epsilon(1e-6));
+    // after breaking away at x_s with the belt's speed, the block swings about x_k with amplitude
+    // sqrt((x_s - x_k)^2 + (v_b / w)^2): its largest extension
+    const double x_s = mu_s * p.normal_force / p.stiffness, x_k = mu_k * p.normal_force / p.stiffness;
+    const double reach = std::hypot(x_s - x_k, p.belt_speed / std::sqrt(p.stiffness / p.mass));
+    SolverOptions dense;
+    dense.rtol = 1e-10;
+    dense.atol = 1e-12;
+    for (int k = 0; k <= 5000; ++k) dense.output_times.push_back(5.0 * k / 5000);
+    const Result sampled = simulate(test::BeltRig<Coulomb>(p, Coulomb(mu_k, mu_s)), 5.0, dense);
+    double x_max = 0.0;
+    for (double x : sampled.column_values("position")) x_max = std::max(x_max, x);
+    CHECK(x_max == Approx(x_k + reach).epsilon(1e-5));
+    // energy: belt work = mechanical energy change + friction work
+    const std::size_t last = run.rows() - 1;
+    const double x = run.state(last, 0), v = run.state(last, 1);
+    const double energy = 0.5 * p.mass * v * v + 0.5 * p.stiffness * x * x;
+    CHECK(run.state(last, run.column("belt_work")) ==
+          Approx(energy + run.state(last, run.column("friction_work"))).epsilon(1e-6));
+}
