@@ -36,7 +36,8 @@ py::dict extras_of(const AxialVibrationRig& r) {
 
 }  // namespace
 
-py::object register_axial(py::module_& m) {
+template <>
+py::object register_rig<law_rig<AxialRig, AxialRigParams>>(py::module_& m) {
     const std::string description = R"doc(
 The axial vibrating-sliding rig of paper 000 (eqs 5-9): a specimen of mass m pulled through a drive spring
 k_d whose end moves at v_d, on a surface vibrating as u = u0 sin(2 pi f t), with friction under normal force F_N:

@@ -8,8 +8,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "simulation.hpp"
-#include "table_binding.hpp"
+#include "rig_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -231,7 +230,8 @@ KinematicRigPy make_harmonic(py::handle friction, double v_d, double v_a, double
 
 }  // namespace
 
-py::object register_kinematic(py::module_& m) {
+template <>
+py::object register_rig<signal_rig>(py::module_& m) {
     py::class_<KinematicRigPy> cls(m, "KinematicRig", R"doc(
 A friction law driven by a prescribed relative velocity v_r(t) [m/s] and normal force N(t) [N]: no mass, so
 set-valued laws (Coulomb, Stribeck) give their slip force on the branch sgn(v_r); reversals of v_r are located
@@ -251,6 +251,7 @@ normal_force : float | callable t -> N | (t, N) pair of arrays, > 0 at every tim
 initial_state : sequence of float, optional
     The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
 )doc");
+    def_outputs(cls, signal_rig::outputs());
     cls.def(py::init(&make_rig), py::arg("friction"), py::kw_only(), py::arg("relative_velocity"),
              py::arg("normal_force"), py::arg("initial_state") = py::none())
         .def_static("harmonic", &make_harmonic, py::arg("friction"), py::kw_only(), py::arg("sliding_velocity"),

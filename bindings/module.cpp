@@ -1,6 +1,7 @@
 // frictionsim._core: the C++ engine for the frictionsim Python package. The Python modules in
 // python/frictionsim/ re-export these classes and add what NumPy/SciPy do well (fitting, signals, plots).
 #include "common.hpp"
+#include "rig_binding.hpp"
 #include "simulation.hpp"
 
 namespace frictionsim::python {
@@ -85,16 +86,21 @@ PYBIND11_MODULE(_core, m) {
     register_callable_law(m);
     register_results(m);
     register_contact(m);
-    // the rigs simulate() runs: each register_* binds one and hands its class back. In order, one statement each
-    // (a function's arguments are evaluated in no set order): the Navarro-Lopez rigs return fs.NavarroLopezBit,
-    // which register_drillstring binds, and a signature read before that names the C++ type.
+    // the rigs simulate() runs: every entry of EngineRigs (rigs/rigs.hpp) in its order, by register_rig, then the
+    // string models (bindings/drillstring.cpp, torsional_string.cpp). fs.StringRig's file also binds
+    // fs.NavarroLopezBit, the .bit of the rigs built from their table alone: it is bound before the first of them,
+    // so that their signatures name the Python class, not the C++ type.
     py::list rigs;
-    rigs.append(register_axial(m));
-    rigs.append(register_kinematic(m));
-    rigs.append(register_torsional(m));
-    rigs.append(register_drillstring(m));
-    rigs.append(register_navarro_lopez_2dof(m));
-    rigs.append(register_navarro_lopez_4dof(m));
+    bool strings_bound = false;
+    for_each_type(frictionsim::EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        if (Entry::construction == frictionsim::RigConstruction::table && !strings_bound) {
+            rigs.append(register_drillstring(m));
+            strings_bound = true;
+        }
+        rigs.append(register_rig<Entry>(m));
+    });
+    if (!strings_bound) rigs.append(register_drillstring(m));
     if (const py::object field = register_torsional_string(m); !field.is_none()) rigs.append(field);  // needs Eigen
     m.attr("RIGS") = py::tuple(rigs);
     register_wells(m);

@@ -1,7 +1,7 @@
 // The lumped drill strings of Navarro-Lopez & Cortes (2007) for Python: fs.NavarroLopez2Dof and fs.NavarroLopez4Dof
 // (include/frictionsim/rigs/navarro_lopez.hpp). Their bit law is part of their parameter table (no friction
-// argument), so they are bound from the table alone: keywords, properties, help(), repr, pickling and _simulate are
-// read from NavarroLopez*Params::fields() as bind_rig reads a law rig's (bindings/rig_binding.hpp).
+// argument): bind_rig binds them as BoundTableRig (keywords, properties, outputs, help(), repr, pickling and
+// _simulate from NavarroLopez*Params::fields()); this file adds their docstrings and their own methods.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -17,15 +17,6 @@ namespace frictionsim::python {
 
 namespace {
 
-/// The rig and the parameters it was built from; a one-alternative variant for simulate_variant.
-template <class P>
-struct BoundNavarroLopez {
-    P params;
-    std::variant<NavarroLopezRig<P>> rig;
-    explicit BoundNavarroLopez(const P& p) : params(p), rig(NavarroLopezRig<P>(p)) {}
-    const NavarroLopezRig<P>& model() const { return std::get<0>(rig); }
-};
-
 /// u - (c_r + c_b) w - R_b W mu_b(w) - (sum of the pipe wall torques) [N m]: the steady balance with every inertia
 /// at speed w > 0 (the sum of all equations); its root is the steady bit speed.
 template <class P>
@@ -39,38 +30,12 @@ double steady_balance(const NavarroLopezRig<P>& rig, double w) {
 
 template <class P>
 py::object bind_navarro_lopez(py::module_& m, const char* name, const std::string& description) {
-    using Bound = BoundNavarroLopez<P>;
-    static constexpr auto fields = P::fields();
-    py::class_<Bound> cls(m, name, kept(description + keywords_doc(fields)));
-    def_field_properties(cls, fields, [](const Bound& r) -> const P& { return r.params; });
-    std::string signature = "__init__(self, *";
-    const P defaults{};
-    for (const Field<P>& f : fields)
-        signature += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
-    signature += ") -> None\n\nThe rig's parameters by keyword (see the class docstring).\n";
-    py::options options;
-    options.disable_function_signatures();
-    cls.def(py::init([name](const py::kwargs& kwargs) {
-                P p{};
-                if (read_field_keywords(p, kwargs, fields, name) != kwargs.size())
-                    for (auto item : kwargs) {
-                        const std::string key = py::str(item.first);
-                        bool known = false;
-                        for (const Field<P>& f : fields) known = known || key == f.public_name();
-                        if (!known)
-                            throw py::type_error(std::string(name) + "() got an unexpected keyword argument '" + key +
-                                                 "'");
-                    }
-                return Bound(p);
-            }),
-            kept(std::move(signature)));
-    options.enable_function_signatures();
-    cls.def_property_readonly("state_names", [](const Bound& r) {
-           const auto names = r.model().state_names();
-           return std::vector<std::string>(names.begin(), names.end());
-       })
-        .def_property_readonly("period", [](const Bound&) { return py::none(); },
-                               "None: the string has no imposed period (its stick-slip period is an outcome).")
+    using Bound = BoundTableRig<NavarroLopezRig<P>, P>;
+    constexpr std::array<ExtraKeyword<P>, 0> no_extra_keywords{};
+    auto cls = bind_rig<Bound>(m, name, description, P::fields(), NoLaw{}, no_extras<Bound>);
+    def_table_init(cls, name, P::fields(), no_extra_keywords, [](const P& p) { return Bound(p); });
+    cls.def_property_readonly("period", [](const Bound&) { return py::none(); },
+                              "None: the string has no imposed period (its stick-slip period is an outcome).")
         .def_property_readonly("bit", [](const Bound& r) { return r.model().bit_law(); },
                                "The bit's law (NavarroLopezBit) built from this table's bit fields.")
         .def_property_readonly("inertias", [](const Bound& r) {
@@ -84,17 +49,7 @@ py::object bind_navarro_lopez(py::module_& m, const char* name, const std::strin
         .def("steady_balance", py::vectorize([](Bound& r, double w) { return steady_balance(r.model(), w); }),
              py::arg("speed"),
              "u - (c_r + c_b) w - R_b W mu_b(w) - sum T_p [N m] at a common speed w > 0 [rad/s] (arrays broadcast): "
-             "the sum of all equations with every inertia at w; its root is the steady speed while the bit turns.")
-        .def("_simulate", [](const Bound& r, double t_end, const SolverOptions& options, double t_start) {
-            return simulate_variant(r.rig, t_end, options, t_start);
-        })
-        .def("__reduce__", [](py::handle self) {
-            return reduce_by_construction(self, py::tuple(), field_keywords(self.cast<const Bound&>().params, fields));
-        })
-        .def("__repr__", [name](const Bound& r) {
-            const std::string changed = changed_fields_repr(r.params, fields);  // ", key=value..."
-            return std::string(name) + "(" + (changed.empty() ? changed : changed.substr(2)) + ")";
-        });
+             "the sum of all equations with every inertia at w; its root is the steady speed while the bit turns.");
     return std::move(cls);
 }
 
@@ -115,7 +70,8 @@ friction_force is the bit's torque T_b [N m]; the mode is 0 while everything tur
 
 }  // namespace
 
-py::object register_navarro_lopez_2dof(py::module_& m) {
+template <>
+py::object register_rig<table_rig<NavarroLopez2Dof, NavarroLopez2DofParams>>(py::module_& m) {
     return bind_navarro_lopez<NavarroLopez2DofParams>(
         m, "NavarroLopez2Dof",
         std::string("\nThe 2-DOF drill string of Navarro-Lopez & Suarez (2004), reused by Navarro-Lopez & Cortes "
@@ -124,7 +80,8 @@ py::object register_navarro_lopez_2dof(py::module_& m) {
                          "Keywords\n--------\n");
 }
 
-py::object register_navarro_lopez_4dof(py::module_& m) {
+template <>
+py::object register_rig<table_rig<NavarroLopez4Dof, NavarroLopez4DofParams>>(py::module_& m) {
     return bind_navarro_lopez<NavarroLopez4DofParams>(
         m, "NavarroLopez4Dof",
         std::string("\nThe 4-DOF drill string of Navarro-Lopez & Cortes (2007): rotary table, two pipe inertias, "

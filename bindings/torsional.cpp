@@ -89,7 +89,8 @@ py::array_t<double> per_row(const TorsionalDrillStringRig& r, py::array_t<double
 
 }  // namespace
 
-py::object register_torsional(py::module_& m) {
+template <>
+py::object register_rig<law_rig<TorsionalRig, TorsionalRigParams>>(py::module_& m) {
     const HystereticFriction::Params hd;
     py::class_<HystereticFriction> hysteretic(m, "HystereticFriction", R"doc(
 Hysteretic velocity-acceleration friction torque of paper 001 (eq 6), in N m on a disc turning at w [rad/s]

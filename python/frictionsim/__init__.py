@@ -15,6 +15,7 @@ boundary: frictionsim.units).
 
 from ._core import (
     FRICTION_LAWS,
+    RIGS,
     HAS_EIGEN,
     HAS_SUNDIALS,
     AxialVibrationRig,
@@ -57,6 +58,9 @@ from ._core import __version__  # the CMake project version (CMakeLists.txt), co
 #: Friction laws a rig can run with: the engine's list (include/frictionsim/friction/laws.hpp), each class named
 #: as in C++ (fs.Coulomb, fs.LuGre, ...), with its parameter table in ``Law.parameters``.
 globals().update({_law.__name__: _law for _law in FRICTION_LAWS})
+#: Rigs simulate() runs: the engine's list (include/frictionsim/rigs/rigs.hpp) and the string models, each class
+#: named as bound, so a rig added to the list needs no line here.
+globals().update({_rig.__name__: _rig for _rig in RIGS})
 
 __all__ = [
     "AccuracyWarning",
@@ -98,6 +102,7 @@ __all__ = [
     "units",
     "vibration_velocity_amplitude",
 ] + [_law.__name__ for _law in FRICTION_LAWS] + (["TorsionalString", "aarsnes_shor_well_b"] if HAS_EIGEN else [])
+__all__ += [_rig.__name__ for _rig in RIGS if _rig.__name__ not in __all__]
 
 
 def __getattr__(name: str):

@@ -1210,6 +1210,7 @@ class AxialVibrationRig:
     initial_velocity : float = 0
         x'(0) [m/s], finite: Initial velocity.
     """
+    outputs: typing.ClassVar[tuple] = (('friction_force', 'N', 'friction force F_F on the specimen'), ('position', 'm', 'specimen position x'), ('velocity', 'm/s', "specimen velocity x'"), ('friction_impulse', 'N s', 'int F_F dt'), ('friction_work', 'J', 'int F_F v_r dt: dissipated plus stored in the law'), ('drive_work', 'J', 'int F_d v_d dt = energy change + friction work'))
     parameters: typing.ClassVar[tuple]
     def __init__(self, friction: typing.Any, *, mass: float = 0.2, drive_stiffness: float = 20000, sliding_velocity: float = 0.001, amplitude: float = 0.005, frequency: float = 17, normal_force: float = 90, gravitational_acceleration: float = 9.81, initial_velocity: float = 0, gravity: bool = False, initial_position: float | None = None) -> None:
         """
@@ -1311,6 +1312,7 @@ class KinematicRig:
     initial_state : sequence of float, optional
         The law's initial state (z0 [m] for Dahl, LuGre and ElastoPlastic); default zero.
     """
+    outputs: typing.ClassVar[tuple] = (('friction_force', 'N', 'friction force F under the prescribed v_r(t), N(t)'), ('friction_impulse', 'N s', 'int F dt'), ('friction_work', 'J', 'int F v_r dt: dissipated plus stored in the law'))
     @staticmethod
     def harmonic(friction: typing.Any, *, sliding_velocity: typing.SupportsFloat | typing.SupportsIndex, velocity_amplitude: typing.SupportsFloat | typing.SupportsIndex, frequency: typing.SupportsFloat | typing.SupportsIndex, normal_force: typing.Any, initial_state: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] | None = None) -> KinematicRig:
         """
@@ -1487,6 +1489,7 @@ class TorsionalRig:
     initial_drive_speed : float = 0
         w3(0) [rad/s], finite: Initial drive speed (load side).
     """
+    outputs: typing.ClassVar[tuple] = (('friction_force', 'N m', 'friction torque on the disc'), ('disc_angle', 'rad', 'disc angle'), ('disc_speed', 'rad/s', 'disc speed w2'), ('shaft_twist', 'rad', 'twist of the shaft between drive and disc'), ('drive_speed', 'rad/s', 'drive speed w3 (load side)'), ('current', 'A', 'motor current'), ('speed_error_integral', 'rad', 'int (w_ref - w3) dt of the PI speed loop'), ('motor_work', 'J', 'int eta K_T i w3 dt: stored energy change + friction + damping work'), ('friction_work', 'J', 'int T_f2 w2 dt, dissipated at the disc'), ('damping_work', 'J', "the shaft's and the motor's viscous and Coulomb losses"), ('electrical_work', 'J', 'int V i dt into the armature'), ('ohmic_work', 'J', 'int R i^2 dt in the armature'))
     parameters: typing.ClassVar[tuple]
     def __init__(self, friction: typing.Any, *, disc_inertia: float = 0.0149, shaft_stiffness: float = 0.3659, shaft_damping: float = 0.0167, motor_inertia: float = 0.0003703125, gear_ratio: float = 8, inductance: float = 0.0008437, resistance: float = 0.33, torque_constant: float = 0.126, back_emf_constant: float = 0.0602, motor_friction_torque: float = 0.1196, motor_viscous_coefficient: float = 0.0001784, proportional_gain: float = 2.8, integral_gain: float = 3.5, reference_speed: float = 5.76, normal_force: float = 35, contact_radius: float = 0.1, initial_disc_speed: float = 0, initial_drive_speed: float = 0) -> None:
         """
@@ -2293,6 +2296,7 @@ class NavarroLopez2Dof:
     initial_speed : float = 0
         w(0) [rad/s], finite: Speed of every inertia at t = 0 (springs untwisted).
     """
+    outputs: typing.ClassVar[tuple] = (('friction_force', 'N m', "the bit's torque T_b"), ('table_speed', 'rad/s', 'rotary table speed'), ('bit_speed', 'rad/s', 'bit speed'), ('string_twist', 'rad', 'twist of the string, table - bit'), ('motor_work', 'J', 'int u w_0 dt = stored energy change + damping work + friction work'), ('damping_work', 'J', 'int [c_r w_0^2 + sum d_i (w_i - w_i+1)^2] dt'), ('friction_work', 'J', "int sum T_i w_i dt: the bit's (and the pipe walls') friction"))
     parameters: typing.ClassVar[tuple]
     def __init__(self, *, table_inertia: float = 2122, bit_inertia: float = 374, string_stiffness: float = 861.2, string_damping: float = 172.3, table_damping: float = 425, bit_damping: float = 50, bit_radius: float = 0.155575, coulomb_coefficient: float = 0.5, static_coefficient: float = 0.8, weakening_rate: float = 0.9, velocity_scale: float = 1, stick_band: float = 0, motor_torque: float = 6000, weight_on_bit: float = 30000, initial_speed: float = 0) -> None:
         """
@@ -2472,6 +2476,7 @@ class NavarroLopez4Dof:
     initial_speed : float = 0
         w(0) [rad/s], finite: Speed of every inertia at t = 0 (springs untwisted).
     """
+    outputs: typing.ClassVar[tuple] = (('friction_force', 'N m', "the bit's torque T_b"), ('table_speed', 'rad/s', 'rotary table speed'), ('upper_pipe_speed', 'rad/s', "upper pipe inertia's speed"), ('lower_pipe_speed', 'rad/s', "lower pipe inertia's speed"), ('bit_speed', 'rad/s', 'bit speed'), ('table_twist', 'rad', 'twist of the spring table - upper pipe'), ('pipe_twist', 'rad', 'twist of the spring upper - lower pipe'), ('bit_twist', 'rad', 'twist of the spring lower pipe - bit'), ('motor_work', 'J', 'int u w_0 dt = stored energy change + damping work + friction work'), ('damping_work', 'J', 'int [c_r w_0^2 + sum d_i (w_i - w_i+1)^2] dt'), ('friction_work', 'J', "int sum T_i w_i dt: the bit's (and the pipe walls') friction"))
     parameters: typing.ClassVar[tuple]
     def __init__(self, *, table_inertia: float = 930, upper_pipe_inertia: float = 2782.25, lower_pipe_inertia: float = 750, bit_inertia: float = 471.9698, table_stiffness: float = 698.063, pipe_stiffness: float = 1080, bit_stiffness: float = 907.48, table_spring_damping: float = 139.6126, pipe_damping: float = 190, bit_spring_damping: float = 181.49, table_damping: float = 425, pipe_wall_torque: float = 0, bit_damping: float = 50, bit_radius: float = 0.155575, coulomb_coefficient: float = 0.5, static_coefficient: float = 0.8, weakening_rate: float = 0.9, velocity_scale: float = 1, stick_band: float = 0, motor_torque: float = 6000, weight_on_bit: float = 30000, initial_speed: float = 0) -> None:
         """

@@ -2,9 +2,12 @@
 netCDF file's ``units`` and :mod:`frictionsim.plots` onto an axis.
 
 A friction law declares its states' units in C++ next to their names (``Law::state_units``, bound as the class
-attribute ``state_units`` beside ``state_names``), so a new law needs no entry here. A rig declares, once per rig
-class (the class object the bindings made, never its name), the unit of its friction output (a force [N] or a torque
-[N m]), its own states, the states it has per node of a string (``theta_3``), and what its ``mode`` column counts.
+attribute ``state_units`` beside ``state_names``), so a new law needs no entry here. A rig of the engine's list
+declares its outputs in C++ next to its parameter table (``Params::outputs()``, bound as the class attribute
+``outputs``: ``(name, unit, what)`` for ``friction_force``, a force [N] or a torque [N m], and each of its own
+states), so a new rig needs no entry here either. The string models (``StringRig``, ``TorsionalString``) do not
+declare theirs in C++ yet: their entries below also give the states they have per node (``theta_3``) and what
+their ``mode`` column counts.
 """
 
 from __future__ import annotations
@@ -12,14 +15,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Dict, Mapping, Optional
 
-from ._core import AxialVibrationRig, KinematicRig, NavarroLopez2Dof, NavarroLopez4Dof, StringRig, TorsionalRig
+from . import _core
+from ._core import StringRig
 
 try:
     from ._core import TorsionalString  # needs Eigen (HAS_EIGEN)
 except ImportError:  # pragma: no cover - an extension built without Eigen
     TorsionalString = None
 
-__all__ = ["RIG_OUTPUTS", "RigOutputs", "law_state_units", "output_units", "rig_outputs"]
+__all__ = ["RIG_OUTPUTS", "RigOutputs", "declared_outputs", "law_state_units", "output_units", "rig_outputs"]
 
 
 @dataclass(frozen=True)
@@ -43,32 +47,34 @@ class RigOutputs:
 _WORK = "J"
 _STRING = dict(theta="rad", omega="rad/s", u="m", v="m/s")
 
-#: Every rig the engine binds, by its class (``frictionsim.RIGS``): a new rig adds one entry (tests/python/
-#: test_io.py checks that each has one).
+def declared_outputs(cls: type) -> Optional[RigOutputs]:
+    """What a rig class declares in C++ (its ``outputs``: ``(name, unit, what)`` rows, ``friction_force`` among
+    them), or None for a class that declares none. A row ``name_*`` is a state per node (``theta_*``: ``theta_0``,
+    ``theta_1``, ...); a row ``mode`` of unit "1" says the mode column counts stuck contacts."""
+    rows = getattr(cls, "outputs", None)
+    if not rows:
+        return None
+    units = {name: unit for name, unit, _ in rows}
+    friction = units.pop("friction_force")
+    mode = "stuck contacts" if units.pop("mode", None) == "1" else "contact"
+    nodes = {name[:-2]: units.pop(name) for name in list(units) if name.endswith("_*")}
+    return RigOutputs(friction, units, nodes, mode)
+
+
+#: The string models' outputs, until they declare them in C++ as the rigs of the engine's list do.
+_STRING_MODELS: Dict[Any, RigOutputs] = {
+    StringRig: RigOutputs("N m", {
+        "speed_error_integral": "rad", "drive_work": _WORK, "hoist_work": _WORK, "excitation_work": _WORK,
+        "wall_friction_work": _WORK, "damping_work": _WORK, "bit_work": _WORK}, _STRING, "stuck contacts"),
+    TorsionalString: RigOutputs("N m", {
+        "bit_speed": "rad/s", "top_drive_speed": "rad/s", "motor_torque": "N m", "stuck_fraction": "1"}),
+}
+
+#: Every rig the engine binds, by its class (``frictionsim.RIGS``): each declares its outputs in C++ (``outputs``),
+#: the string models apart (tests/python/test_io.py checks that each rig has an entry).
 RIG_OUTPUTS: Dict[type, RigOutputs] = {
     cls: outputs for cls, outputs in (
-        (AxialVibrationRig, RigOutputs("N", {
-            "position": "m", "velocity": "m/s", "friction_impulse": "N s", "friction_work": _WORK,
-            "drive_work": _WORK})),
-        (KinematicRig, RigOutputs("N", {
-            "friction_impulse": "N s", "friction_work": _WORK})),
-        (TorsionalRig, RigOutputs("N m", {
-            "disc_angle": "rad", "disc_speed": "rad/s", "shaft_twist": "rad", "drive_speed": "rad/s", "current": "A",
-            "speed_error_integral": "rad", "friction_impulse": "N m s", "motor_work": _WORK,
-            "friction_work": _WORK, "damping_work": _WORK, "electrical_work": _WORK, "ohmic_work": _WORK})),
-        (StringRig, RigOutputs("N m", {
-            "speed_error_integral": "rad", "drive_work": _WORK, "hoist_work": _WORK, "excitation_work": _WORK,
-            "wall_friction_work": _WORK, "damping_work": _WORK, "bit_work": _WORK}, _STRING, "stuck contacts")),
-        (TorsionalString, RigOutputs("N m", {
-            "bit_speed": "rad/s", "top_drive_speed": "rad/s", "motor_torque": "N m", "stuck_fraction": "1"})),
-        (NavarroLopez2Dof, RigOutputs("N m", {
-            "table_speed": "rad/s", "bit_speed": "rad/s", "string_twist": "rad", "motor_work": _WORK,
-            "damping_work": _WORK, "friction_work": _WORK})),
-        (NavarroLopez4Dof, RigOutputs("N m", {
-            "table_speed": "rad/s", "upper_pipe_speed": "rad/s", "lower_pipe_speed": "rad/s", "bit_speed": "rad/s",
-            "table_twist": "rad", "pipe_twist": "rad", "bit_twist": "rad", "motor_work": _WORK,
-            "damping_work": _WORK, "friction_work": _WORK})),
-    ) if cls is not None
+        (cls, declared_outputs(cls) or _STRING_MODELS.get(cls)) for cls in _core.RIGS) if outputs is not None
 }
 
 
