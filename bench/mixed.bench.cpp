@@ -13,29 +13,13 @@
 
 #include <benchmark/benchmark.h>
 
-#include <frictionsim/string/string_rig.hpp>
-#include <frictionsim/string/torsional_string.hpp>
+#include <frictionsim/string/exact_string.hpp>
 #include <frictionsim/friction/coulomb.hpp>
 #include <frictionsim/simulate.hpp>
 
 namespace fs = frictionsim;
 
 namespace {
-
-/// TorsionalString's node N (the bit and its wall: one contact, the bounds add) as a StringRig bit.
-struct BitAndWall {
-    static constexpr const char* name = "BitAndWall";
-    static constexpr bool has_stick = true;
-    static constexpr std::size_t state_count = 0;
-    static constexpr bool touches_rock = true;
-    fs::NavarroLopezBit law;
-    double weight = 0.0, wall_static = 0.0, wall_kinetic = 0.0;
-    double weight_on_bit() const { return weight; }
-    double static_limit(double w) const { return law.static_limit(w) + wall_static; }
-    double slip_force(double v, double w, int dir) const { return law.slip_force(v, w, dir) + dir * wall_kinetic; }
-    double slip_slope(double v, double w, int dir) const { return law.slip_slope(v, w, dir); }
-    double karnopp_band() const { return 0.0; }
-};
 
 constexpr double t_end = 6.0, mu = 0.1, weight = 6e4;
 
@@ -60,28 +44,9 @@ fs::TorsionalString torsional_string(std::size_t n) {
     return fs::TorsionalString(fs::DrillString({pipe()}), p, n, survey);
 }
 
-fs::StringRig<fs::Coulomb, BitAndWall> string_rig(const fs::TorsionalString& ts) {
-    const std::size_t n = ts.lumped().elements();
-    fs::StringRigParams p;
-    p.top_drive_inertia = 300.0;
-    p.proportional_gain = 3e3;
-    p.integral_gain = 1e3;
-    p.surface_speed = 4.0;
-    p.torque_limit = 1e12;
-    p.end_inertia = 40.0;
-    p.damping_time = 0.0;
-    fs::StringRigSetup s;
-    s.elements = n;
-    const std::vector<double>& bound = ts.static_friction_torque();
-    for (std::size_t i = 1; i < n; ++i)  // walls where there is friction (the vertical top has none)
-        if (bound[i] > 0.0) {
-            s.contact_nodes.push_back(i);
-            s.normal_forces.push_back(bound[i] / (mu * pipe().outer_diameter / 2.0));
-        }
-    BitAndWall bit{ts.bit_law(), weight, bound.back(), 2.0 / 3.0 * bound.back()};
-    return fs::StringRig<fs::Coulomb, BitAndWall>(fs::DrillString({pipe()}), p, s, fs::Coulomb(mu * 2.0 / 3.0, mu),
-                                                  bit);
-}
+/// The same string with every switch located: string/exact_string.hpp's StringRig of it (its bit and node N's wall one
+/// contact, the PI unlimited).
+fs::ExactStringOnBottom string_rig(const fs::TorsionalString& ts) { return fs::exact_string_on_bottom(ts); }
 
 void bit_counters(benchmark::State& state, std::vector<double> t) {
     std::sort(t.begin(), t.end());
