@@ -115,7 +115,7 @@ def main() -> int:
     ap.add_argument("--python", default=sys.executable, help="the interpreter with frictionsim installed")
     ap.add_argument("--t-end", type=float, default=150.0)
     ap.add_argument("--elements", type=int, default=1000)
-    ap.add_argument("--steps", default="0.002,0.005", help="frictionsim's steps h [s], comma-separated")
+    ap.add_argument("--steps", default="0.002,0.005,0.01", help="frictionsim's steps h [s], comma-separated")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--peak-tolerance", type=float, default=0.02)
     ap.add_argument("--period-tolerance", type=float, default=0.03)
