@@ -1863,7 +1863,7 @@ class DetournayBit:
     torque_constant : float = 0.5
         c [-], positive and finite (1/2 in Detournay & Defourny's convention, 1 in others): Constant of the torque: T = c (eps a^2 d + gamma mu a W_f).
     """
-    CONVENTIONS: typing.ClassVar[dict] = {'detournay_defourny': (0.5, 0.5, 'T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007)'), 'unit': (1.0, 1.0, 'T = eps a^2 d + gamma mu a W_f (codes that drop the half)'), 'half_cutting': (0.5, 1.0, "T = eps a^2 d / 2 + gamma mu a W_f (the wear flats' half absorbed into gamma: here c = 1/2, gamma = 2 gamma')")}
+    CONVENTIONS: typing.ClassVar[dict] = {'detournay_defourny': (0.5, 0.5, "T = eps a^2 d / 2 + gamma mu a W_f / 2 (Detournay & Defourny 1992; Richard, Germay & Detournay 2007; the open Simulator4nDOF's Detournay.cs, whose own speed factors - (w^2 / (w^2 + (0.4 pi)^2)) on the cutting torque, (1 + exp(-mu w / 2 pi)) / 2 on the wear flats' - this law does not carry)"), 'unit': (1.0, 1.0, 'T = eps a^2 d + gamma mu a W_f (codes that drop the half)'), 'half_cutting': (0.5, 1.0, "T = eps a^2 d / 2 + gamma mu a W_f (the wear flats' half absorbed into gamma: here c = 1/2, gamma = 2 gamma')")}
     parameters: typing.ClassVar[tuple]
     @staticmethod
     def depth_of_cut(rate_of_penetration: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], angular_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
