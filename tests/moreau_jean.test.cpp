@@ -15,6 +15,7 @@
 
 #include <frictionsim/eigen/chain_ldlt.hpp>
 #include <frictionsim/eigen/moreau_jean.hpp>
+#include <frictionsim/eigen/one_step_contact.hpp>  // ProjectedGaussSeidel, the ContactSolver concept
 
 #include "catch.hpp"
 #include "rejection.hpp"
