@@ -546,7 +546,8 @@ TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update giv
           "[moreau_jean]") {
     // A chain with W = diag + sub/superdiagonal (diagonally dominant: SPD), stuck dofs replaced by identity rows and
     // columns. After each random switch set: the updated x equals, bit for bit, the x of a fresh factor + solve, and
-    // that x solves the reduced system (residual at round-off). Lengths around the twist's edge cases.
+    // that x solves the reduced system (residual at round-off); so does a factor and forward pass rerun from the
+    // first and last switched dofs only (the chain's many-switch iterations). Lengths around the twist's edge cases.
     std::uint64_t seed = 12345;
     const auto uniform = [&seed]() {
         seed = seed * 6364136223846793005u + 1442695040888963407u;
@@ -559,15 +560,18 @@ TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update giv
             wd[i] = 2.0 + uniform();
             if (i > 0) wl[i] = -(0.5 + 0.49 * uniform());  // |W(i, i-1)| < 1: dominant, slow decay
         }
-        detail::ChainLDLT updated, fresh;
+        detail::ChainLDLT updated, fresh, partial;
         updated.assign(wd, wl, wl);
+        partial.assign(wd, wl, wl);
         std::vector<char> stuck(n, 0);
-        std::vector<double> r(n), x(n, 0.0), x_fresh(n);
+        std::vector<double> r(n), x(n, 0.0), x_fresh(n), x_partial(n);
         for (std::size_t i = 0; i < n; ++i) r[i] = uniform() - 0.5;
         REQUIRE(updated.factor(stuck.data()));
         updated.forward(r.data());
         updated.backward(x.data());
-        int mismatches = 0;
+        REQUIRE(partial.factor(stuck.data()));
+        partial.forward(r.data());
+        int mismatches = 0, partial_mismatches = 0;
         double worst_residual = 0.0;
         std::vector<detail::DofSpan> changed;
         for (int round = 0; round < 40; ++round) {
@@ -584,6 +588,13 @@ TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update giv
             REQUIRE(fresh.factor(stuck.data()));
             fresh.forward(r.data());
             fresh.backward(x_fresh.data());
+            if (!switched.empty()) {
+                REQUIRE(partial.factor(stuck.data(), switched.front(), switched.back()));
+                partial.forward(r.data(), switched.front(), switched.back());
+            }
+            partial.backward(x_partial.data());
+            for (std::size_t i = 0; i < n; ++i)
+                if (std::memcmp(&x_partial[i], &x_fresh[i], sizeof(double)) != 0) ++partial_mismatches;
             std::size_t next = 0;
             for (std::size_t i = 0; i < n; ++i) {
                 if (std::memcmp(&x[i], &x_fresh[i], sizeof(double)) != 0) ++mismatches;
@@ -599,6 +610,7 @@ TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update giv
         }
         INFO("n = " << n);
         CHECK(mismatches == 0);
+        CHECK(partial_mismatches == 0);
         CHECK(worst_residual < 1e-14);
     }
 }

@@ -59,6 +59,8 @@ struct DofSpan {
 /// chain, and yields the bits of a solve of the whole chain.
 class ChainLDLT {
 public:
+    static constexpr std::size_t npos = static_cast<std::size_t>(-1);
+
     /// W(i, i), W(i, i - 1) and W(i - 1, i) (sub- and superdiagonal: index 0 unused).
     void assign(std::vector<double> diagonal, std::vector<double> subdiagonal, std::vector<double> superdiagonal) {
         wd_ = std::move(diagonal);
@@ -83,37 +85,48 @@ public:
         return s;
     }
 
-    /// The whole chain's factors; false when a pivot is not positive.
-    bool factor(const char* stuck) {
+    /// The whole chain's factors; false when a pivot is not positive. With `lo` and `hi` (the first and the last
+    /// dof whose stuck flag changed since the last factor): from them towards the twist only (above the twist d_i,
+    /// l_i read the dofs up to i, below it those from i on: outside lo..hi nothing they read changed).
+    bool factor(const char* stuck, std::size_t lo = 0, std::size_t hi = npos) {
         const std::size_t n = size(), k = k_;
         if (n == 0) return true;
         bool definite = true;
-        // the halves interleaved: dof j above the twist, n - 1 - j below it
-        for (std::size_t j = 0; j < k; ++j) {
-            definite = factor_above(j, stuck) && definite;
-            if (n - 1 - j > k) definite = factor_below(n - 1 - j, stuck) && definite;
+        std::size_t a = std::min(lo, k), b = std::max(std::min(hi, n - 1), k);  // a up to the twist, b down to it
+        for (; a < k && b > k; ++a, --b) {  // the halves interleaved
+            definite = factor_above(a, stuck) && definite;
+            definite = factor_below(b, stuck) && definite;
         }
-        for (std::size_t i = n - 1 - std::min(k, n - 1); i > k; --i) definite = factor_below(i, stuck) && definite;
+        for (; a < k; ++a) definite = factor_above(a, stuck) && definite;
+        for (; b > k; --b) definite = factor_below(b, stuck) && definite;
         return factor_twist(stuck) && definite;
     }
-    /// y = L^-1 r over the whole chain (a stuck dof's r_i is 0).
-    void forward(const double* r) {
+    /// y = L^-1 r over the whole chain (a stuck dof's r_i is 0); with `lo` and `hi` (the first and the last dof
+    /// where r or the factors changed since the last forward): from them towards the twist only, as factor().
+    void forward(const double* r, std::size_t lo = 0, std::size_t hi = npos) {
         const std::size_t n = size(), k = k_;
         if (n == 0) return;
         double* y = y_.data();
         const double *l = l_.data(), *u = u_.data();
+        std::size_t a = std::min(lo, k), b = std::max(std::min(hi, n - 1), k);
         // each half's last value carried in a register (a store to y could alias what the other half reads next)
-        double above = k > 0 ? r[0] : 0.0, below = n - 1 > k ? r[n - 1] : 0.0;
-        if (k > 0) y[0] = above;
-        if (n - 1 > k) y[n - 1] = below;
-        std::size_t j = 1;
-        for (; j < k && n - 1 - j > k; ++j) {  // two independent recurrences per pass
-            above = r[j] - l[j] * above;
-            below = r[n - 1 - j] - u[n - 1 - j] * below;
-            y[j] = above;
-            y[n - 1 - j] = below;
+        double above = 0.0, below = 0.0;
+        if (a < k) {
+            y[a] = above = a == 0 ? r[0] : r[a] - l[a] * y[a - 1];
+            ++a;
         }
-        for (; j < k; ++j) y[j] = above = r[j] - l[j] * above;  // the longer half's last dof
+        if (b > k) {
+            y[b] = below = b == n - 1 ? r[n - 1] : r[b] - u[b] * y[b + 1];
+            --b;
+        }
+        for (; a < k && b > k; ++a, --b) {  // two independent recurrences per pass
+            above = r[a] - l[a] * above;
+            below = r[b] - u[b] * below;
+            y[a] = above;
+            y[b] = below;
+        }
+        for (; a < k; ++a) y[a] = above = r[a] - l[a] * above;  // the longer half's rest
+        for (; b > k; --b) y[b] = below = r[b] - u[b] * below;
         y[k] = twist_forward(r);
     }
     /// x = the solution, from the twist outwards.

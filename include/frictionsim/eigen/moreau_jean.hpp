@@ -574,8 +574,9 @@ private:
     /// step_inclusion on a chain (detail::ChainLDLT), on plain arrays. The step's first iteration runs over the
     /// whole chain: b, the slip levels and the right-hand side (loops that vectorise), the solve, every contact's
     /// check. Each later iteration updates the factors and the solution from the contacts it switched, as far as
-    /// they change, and checks the contacts there and next to it (the only ones whose test can have changed). Past
-    /// half the iteration budget the general rule (the worst contact alone) with whole-chain passes. The same
+    /// they change, and checks the contacts there and next to it (the only ones whose test can have changed); one
+    /// that switched more than n / 8 contacts reruns whole-chain passes instead (the same bits). Past half the
+    /// iteration budget the general rule (the worst contact alone) with whole-chain passes. The same
     /// iterates as step_inclusion, bit for bit; per-dof copies of the modes (stuck_, free_mask_, sigma_) follow
     /// modes_. The previous state is left in q_prev_, v_prev_ by swapping; returns whether the new one is finite.
     bool step_chain(double h) {
@@ -664,9 +665,14 @@ private:
             }
             ++stats_.factorisations;  // the stuck set changed
             violated_.clear();
-            if (whole) {
-                if (!chain_ldlt_.factor(stuck)) throw_at(t_, "W lost positive definiteness");
-                chain_ldlt_.forward(r);
+            // many switches (past n / 8): plain whole-chain passes, the same bits as the update's and cheaper there
+            // (the update's reach, ~100-200 dofs per switch on Well B at h = 10 ms, then covers most of the chain,
+            // and its span bookkeeping costs more per dof than the plain loops); the factors and y rerun from the
+            // outermost switched dofs towards the twist (nothing outside them changed), x over the whole chain
+            if (whole || switched_.size() * 8 > n) {
+                const auto [lo, hi] = std::minmax_element(switched_.begin(), switched_.end());
+                if (!chain_ldlt_.factor(stuck, *lo, *hi)) throw_at(t_, "W lost positive definiteness");
+                chain_ldlt_.forward(r, *lo, *hi);
                 chain_ldlt_.backward(x);
                 for (std::size_t i = 0; i < n; ++i) check_dof(i, h);
                 continue;
