@@ -72,6 +72,19 @@ inline const char* linear_solver_name(LinearSolver s) {
     return "unknown";
 }
 
+/// The solver of moreau_jean's one-step contact problem (eigen/one_step_contact.hpp; MoreauJeanOptions::
+/// contact_solver): the exact active set (on a chain, with its updated LDL^T), or projected Gauss-Seidel sweeps
+/// (Jean 1999; the same step where the law is monotone, static == kinetic; slower: a sweep per iteration over the
+/// whole string). moreau_jean only: refused with the explicit projection and the ODE methods.
+enum class ContactSolverChoice {
+    active_set,              ///< the default
+    projected_gauss_seidel,  ///< ProjectedGaussSeidel with its defaults (tolerance 1e-14, 100000 sweeps)
+};
+
+inline const char* contact_solver_name(ContactSolverChoice c) {
+    return c == ContactSolverChoice::active_set ? "active_set" : "projected_gauss_seidel";
+}
+
 template <class System>
 constexpr LinearSolver resolve_linear_solver(LinearSolver requested) {
     if (requested != LinearSolver::automatic) return requested;
@@ -135,6 +148,8 @@ struct SolverOptions {
     /// explicit_projection: |v| [m/s or rad/s] below which the clipped predicted contact force acts (A&S's stick
     /// band, 1.5 rad/s); 0: only at rest.
     double projection_band = 0.0;
+    /// moreau_jean's one-step contact solver (ContactSolverChoice); refused by the other methods when not the default.
+    ContactSolverChoice contact_solver = ContactSolverChoice::active_set;
 
     /// The loosest rtol accepted: past it a 5(4) or BDF error estimate no longer bounds the error (a cycle-mean
     /// friction force of the axial rig came out with the wrong sign at rtol 0.2).
@@ -156,6 +171,10 @@ struct SolverOptions {
             throw InvalidParameter("method", std::string(who) + ": method must be an ODE method for an event-driven "
                                              "system (got " + method_name(method) + ", which steps time-stepping "
                                              "models such as TorsionalString)");
+        if (contact_solver != ContactSolverChoice::active_set)
+            throw InvalidParameter("contact_solver", std::string(who) + ": contact_solver must be active_set (the "
+                                                     "default) for an ODE method: it solves moreau_jean's contact "
+                                                     "problem (got " + contact_solver_name(contact_solver) + ")");
         validate_budgets();
         if (!(rtol >= min_rtol && rtol <= max_rtol))
             detail::reject(who, "rtol",
@@ -194,6 +213,11 @@ struct SolverOptions {
         detail::require_positive(who, "step", step);
         if (!(theta >= 0.5 && theta <= 1.0)) detail::reject(who, "theta", "in [0.5, 1]", theta);
         detail::require_non_negative(who, "projection_band", projection_band);
+        if (resolved == Method::explicit_projection && contact_solver != ContactSolverChoice::active_set)
+            throw InvalidParameter("contact_solver", std::string(who) + ": contact_solver must be active_set (the "
+                                                     "default) with explicit_projection: its contact force is "
+                                                     "explicit, there is no one-step problem to solve (got " +
+                                                     contact_solver_name(contact_solver) + ")");
         for (std::size_t i = 1; i < output_times.size(); ++i)  // a row per step at most: no output is skipped over
             if (step > (output_times[i] - output_times[i - 1]) * (1.0 + 1e-9))
                 detail::reject(who, "step", "not larger than the output interval (the gap between output_times)",

@@ -53,6 +53,7 @@ struct TimeStepping {
     double theta = 0.5;
     double projection_band = 0.0;
     double t_start = 0.0;
+    ContactSolverChoice contact_solver = ContactSolverChoice::active_set;  ///< moreau_jean's one-step solver
 };
 
 namespace detail {
@@ -149,7 +150,7 @@ Result simulate_time_stepping(const Model& model, double t_end, const SolverOpti
         const std::size_t n = static_cast<std::size_t>(names.size());
         detail::StopWatch stops(model, options.stop_conditions);
         auto stepper = model.make_stepper(TimeStepping{method, options.step, options.theta, options.projection_band,
-                                                       t_start});
+                                                       t_start, options.contact_solver});
         const std::vector<double>& outputs = options.output_times;
         const std::size_t expected =
             outputs.empty() ? static_cast<std::size_t>(std::lround((t_end - t_start) / options.step)) + 1

@@ -3,8 +3,9 @@
 // TorsionalString is the description (sections, lumping, drive, damping, the walls' bounds from the buoyed weight
 // and the well's inclination); this builds the StringRig that carries the same physics:
 //   lumping:  the same N elements (DrillString::lump), I_TD on node 0, the BHA's inertia on node N;
-//   drive:    the continuous PI, k_p e + k_i int e on node 0 (StringRig's PiTopDrive, its torque limit set out of
-//             reach: the captured string's PI is unlimited), the set-point stepped (setpoint_time_constant 0);
+//   drive:    the continuous PI, k_p e + k_i int e on node 0 (StringRig's PiTopDrive, its torque limit the string's
+//             torque_limit, or out of reach where that is 0: no limit), or the prescribed speed (top_drive
+//             prescribed_speed: StringRig's PrescribedSpeed), the set-point stepped (setpoint_time_constant 0);
 //   damping:  StringRig's element damping beta k_e (damping_time); A&S's absolute k_t it does not carry;
 //   walls:    a Coulomb contact at each node with a bound (static mu_s N r, kinetic f_rat times it), the normal
 //             force N_i = bound_i / (mu_s r_i) so that the bounds are the string's to rounding;
@@ -76,12 +77,13 @@ inline ExactStringParts exact_string_parts(const TorsionalString& ts) {
     q.proportional_gain = p.proportional_gain;
     q.integral_gain = p.integral_gain;
     q.surface_speed = p.speed_setpoint;
-    q.torque_limit = 1e300;  // out of reach: the captured string's PI is unlimited
+    q.torque_limit = p.torque_limit > 0.0 ? p.torque_limit : 1e300;  // 0: no limit, out of reach
     q.end_inertia = p.bha_inertia;
     q.mud_density = p.mud_density;
     q.damping_time = p.damping_time;
     StringRigSetup& s = out.setup;
     s.elements = ts.nodes() - 1;
+    s.top_drive = ts.top_drive();
     const double mu_s = p.friction_coefficient;
     s.wall_contacts = mu_s > 0.0 && ts.contact_count() > 0;
     const std::vector<PipeSection>& sections = ts.string().sections();

@@ -12,7 +12,19 @@
 //              |omega| < omega_c (stick_band_speed; their code: 1.5 rad/s), and stick is true stick (omega = 0);
 //   top drive: node 0 carries I_TD, driven by tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10);
 //              continuous, that is a damper k_p and a spring k_i to the set-point angle (the top row of C and K),
-//              or sampled with a zero-order hold (A&S's MAIN.m: every 0.01 s);
+//              or sampled with a zero-order hold (A&S's MAIN.m: every 0.01 s). With a torque limit T_max > 0 the
+//              drive is StringRig's PiTopDrive (string/top_drive.hpp): tau_m = clamp(k_p e + k_i I, -T_max, T_max),
+//              I frozen while the torque is limited (anti-windup). The continuous limited PI is then explicit: tau_m
+//              and I from each step's start (I by conditional forward Euler), held over the step as the sampled
+//              PI's output is, a first-order error in h where the unlimited PI's implicit damper and spring are
+//              exact in the theta-method; the saturation needs no set-valued solve then, and the torque is +-T_max
+//              exactly while limited (the sliding motion along the limit, PiTopDrive's modes +-2, is captured as
+//              an alternation of limited and linear steps within O(h) of T_max). Stable for h k_p < I_TD + J_0
+//              (checked). Or (set_top_drive) a prescribed speed: node 0 turns at omega_SP(t) whatever it takes
+//              (StringRig's PrescribedSpeed); its dof is held out of the inclusion (at rest, decoupled), element 0
+//              pulls node 1 from the prescribed angle, and motor_torque reports what holds node 0 on its path:
+//              J_0 d omega_SP/dt + k_t J_0 omega_SP + node 0's wall torque - element 0's torque on it (J_0 the
+//              string's node 0 inertia: a prescribed drive's own inertia is not the string's, as in StringRig);
 //   bit:       off bottom: node N carries an optional BHA inertia and a constant bit torque (0 off bottom); on
 //              bottom (weight_on_bit > 0): the velocity-weakening bit of Navarro-Lopez and Cortes (2007,
 //              NavarroLopezBit of bit_rock.hpp) at node N, merged with node N's wall contact into one contact (both
@@ -48,6 +60,7 @@
 #include "../solve/time_stepping.hpp"
 #include "../bits/bit_rock.hpp"
 #include "sections.hpp"
+#include "string_rig_params.hpp"
 
 namespace frictionsim {
 
@@ -69,11 +82,12 @@ struct TorsionalStringParams {
     double bit_torque = 0.0;                     ///< N m against the rotation at the bit; off bottom 0
     double gravity = 9.81;                       ///< m/s^2
     double weight_on_bit = 0.0;                  ///< W, N: > 0 puts the velocity-weakening bit on bottom
+    double torque_limit = 0.0;                   ///< T_max, N m: |tau_m| <= T_max, anti-windup; 0: no limit
 
-    static constexpr std::array<Field<TorsionalStringParams>, 17> fields();
+    static constexpr std::array<Field<TorsionalStringParams>, 18> fields();
 };
 
-inline constexpr std::array<Field<TorsionalStringParams>, 17> TorsionalStringParams::fields() {
+inline constexpr std::array<Field<TorsionalStringParams>, 18> TorsionalStringParams::fields() {
     using P = TorsionalStringParams;
     return {{
         {"top_drive_inertia", "I_TD", "kg m^2", Rule::positive(), &P::top_drive_inertia, "Top drive inertia."},
@@ -102,6 +116,9 @@ inline constexpr std::array<Field<TorsionalStringParams>, 17> TorsionalStringPar
         {"gravity", "g", "m/s^2", Rule::positive(), &P::gravity, "Acceleration of gravity."},
         {"weight_on_bit", "W", "N", Rule::non_negative(), &P::weight_on_bit,
          "Weight on bit of the velocity-weakening bit at node N; 0: off bottom."},
+        {"torque_limit", "T_max", "N m", Rule::non_negative(), &P::torque_limit,
+         "Top-drive torque limit: the PI's torque clamped to +-T_max, its integral frozen while limited "
+         "(anti-windup); 0: no limit."},
     }};
 }
 
@@ -269,37 +286,87 @@ public:
         const double T = p_.setpoint_time_constant;
         return T > 0.0 ? p_.speed_setpoint * (t - T * (1.0 - std::exp(-t / T))) : p_.speed_setpoint * t;
     }
+    /// d omega_SP / dt (0 for a step, past t = 0).
+    double setpoint_acceleration(double t) const {
+        const double T = p_.setpoint_time_constant;
+        return T > 0.0 ? p_.speed_setpoint / T * std::exp(-t / T) : 0.0;
+    }
+
+    /// How node 0 turns: the PI motor (TopDrive::pi_motor, the default; with torque_limit > 0 PiTopDrive's limit
+    /// and anti-windup) or a prescribed speed omega_SP(t) (TopDrive::prescribed_speed, StringRig's PrescribedSpeed:
+    /// whatever torque it takes). A prescribed speed has no controller: a sampled PI (control_period > 0) or a
+    /// torque limit with it is refused, naming the parameter.
+    TorsionalString& set_top_drive(TopDrive drive) {
+        constexpr const char* who = "TorsionalString";
+        if (drive == TopDrive::prescribed_speed) {
+            if (p_.control_period > 0.0)
+                detail::reject(who, "control_period", "0 with top_drive prescribed_speed (no controller to sample)",
+                               p_.control_period);
+            if (p_.torque_limit > 0.0)
+                detail::reject(who, "torque_limit",
+                               "0 with top_drive prescribed_speed (the speed is held whatever torque it takes)",
+                               p_.torque_limit);
+        }
+        drive_ = drive;
+        return *this;
+    }
+    TopDrive top_drive() const { return drive_; }
+    bool holds_speed() const { return drive_ == TopDrive::prescribed_speed; }
+    /// The PI's torque is taken from each step's start (sampled, or limited): see the header.
+    bool explicit_drive() const { return !holds_speed() && (p_.control_period > 0.0 || p_.torque_limit > 0.0); }
+    /// Under a prescribed speed: the torque that holds node 0 on omega_SP(t) [N m], from node 1's angle and speed,
+    /// J_0 d omega_SP/dt + k_t J_0 omega_SP + node 0's wall torque - element 0's torque on node 0 (J_0 without
+    /// I_TD: a prescribed drive's own inertia is not the string's, as StringRig's PrescribedSpeed); the wall
+    /// at its slip level (static inside the stick band, A&S eq 4) while omega_SP != 0, at rest holding what it can.
+    double held_torque(double t, double q1, double v1) const {
+        const double w = setpoint_speed(t), j0 = lumped_.node_inertia[0], k0 = lumped_.torsional_stiffness[0];
+        const double string_torque = k0 * (q1 - setpoint_angle(t)) + p_.damping_time * k0 * (v1 - w);
+        double torque = j0 * setpoint_acceleration(t) + p_.damping_rate * j0 * w - string_torque;
+        const double bound = static_torque_[0];
+        if (bound > 0.0) {
+            if (w != 0.0) torque += std::copysign(std::abs(w) < p_.stick_band_speed ? bound : p_.kinetic_ratio * bound, w);
+            else torque = std::copysign(std::max(std::abs(torque) - bound, 0.0), torque);
+        }
+        return torque;
+    }
 
     /// M v' = f(t) - C v - K q + r over the N + 1 node angles, the wall contacts on the nodes with friction. With a
-    /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0; sampled, f_0 reads `held_motor_torque`.
-    /// On bottom, node N's contact is the bit's with its wall's (captured) or absent (`with_bit_contact` false: the
-    /// bit is the lumped element bit_element()); c_b sits in C(N, N).
+    /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0; sampled (or limited), f_0 reads
+    /// `held_motor_torque`. Under a prescribed speed dof 0 is decoupled and at rest (no force, no contact), and
+    /// element 0 pulls node 1 from the prescribed angle: K(1,1), C(1,1) keep its k_0 and beta k_0, f_1 gets
+    /// k_0 theta_SP(t) + beta k_0 omega_SP(t). On bottom, node N's contact is the bit's with its wall's (captured)
+    /// or absent (`with_bit_contact` false: the bit is the lumped element bit_element()); c_b sits in C(N, N).
     LinearMechanicalSystem system(const double* held_motor_torque = nullptr, bool with_bit_contact = true) const {
         const Eigen::Index n = static_cast<Eigen::Index>(nodes());
         std::vector<Eigen::Triplet<double>> m, c, k;
         for (Eigen::Index i = 0; i < n; ++i) {
             const double j = lumped_.node_inertia[static_cast<std::size_t>(i)];
             m.emplace_back(i, i, j + (i == 0 ? p_.top_drive_inertia : 0.0) + (i == n - 1 ? p_.bha_inertia : 0.0));
-            if (p_.damping_rate > 0.0) c.emplace_back(i, i, p_.damping_rate * j);
+            if (p_.damping_rate > 0.0 && !(i == 0 && holds_speed())) c.emplace_back(i, i, p_.damping_rate * j);
         }
         if (bit_on_bottom() && bit_.params().viscous_damping > 0.0)
             c.emplace_back(n - 1, n - 1, bit_.params().viscous_damping);
         for (Eigen::Index e = 0; e + 1 < n; ++e) {
             const double ke = lumped_.torsional_stiffness[static_cast<std::size_t>(e)];
-            k.emplace_back(e, e, ke);
+            const bool coupled = !(e == 0 && holds_speed());  // a prescribed node 0 is not a dof of the inclusion
+            if (coupled) k.emplace_back(e, e, ke);
             k.emplace_back(e + 1, e + 1, ke);
-            k.emplace_back(e, e + 1, -ke);
-            k.emplace_back(e + 1, e, -ke);
+            if (coupled) {
+                k.emplace_back(e, e + 1, -ke);
+                k.emplace_back(e + 1, e, -ke);
+            }
             if (p_.damping_time > 0.0) {  // the element's damper beta k_e, as StringRig's
                 const double ce = p_.damping_time * ke;
-                c.emplace_back(e, e, ce);
+                if (coupled) c.emplace_back(e, e, ce);
                 c.emplace_back(e + 1, e + 1, ce);
-                c.emplace_back(e, e + 1, -ce);
-                c.emplace_back(e + 1, e, -ce);
+                if (coupled) {
+                    c.emplace_back(e, e + 1, -ce);
+                    c.emplace_back(e + 1, e, -ce);
+                }
             }
         }
         const bool sampled = held_motor_torque != nullptr;
-        if (!sampled) {
+        if (!sampled && !holds_speed()) {
             c.emplace_back(0, 0, p_.proportional_gain);
             k.emplace_back(0, 0, p_.integral_gain);
         }
@@ -312,7 +379,13 @@ public:
         sys.stiffness.setFromTriplets(k.begin(), k.end());
         const TorsionalString self = *this;
         const double bit = p_.bit_torque;
-        if (sampled)
+        if (holds_speed())
+            sys.force = [self, bit](double t, Eigen::VectorXd& f) {
+                f(f.size() - 1) = -bit;
+                const double k0 = self.lumped_.torsional_stiffness[0];
+                f(1) += k0 * self.setpoint_angle(t) + self.p_.damping_time * k0 * self.setpoint_speed(t);
+            };
+        else if (sampled)
             sys.force = [held_motor_torque, bit](double, Eigen::VectorXd& f) {
                 f(0) = *held_motor_torque;
                 f(f.size() - 1) = -bit;
@@ -325,6 +398,7 @@ public:
             };
         const std::size_t last = nodes() - 1;
         for (std::size_t i = 0; i < nodes(); ++i) {
+            if (i == 0 && holds_speed()) continue;  // node 0's wall torque is part of what holds its speed
             if (bit_on_bottom() && i == last) {
                 if (with_bit_contact)  // at rest: the static level; set_contact_bounds moves it each step
                     sys.contacts.push_back(PointContact{i, bit_static_torque(), bit_kinetic_torque(0.0), 0.0, 0.0});
@@ -433,6 +507,7 @@ private:
     std::vector<std::size_t> wall_nodes_;
     NavarroLopezBit bit_;
     BitTreatment treatment_ = BitTreatment::captured;
+    TopDrive drive_ = TopDrive::pi_motor;
     double switch_tolerance_ = 1e-10;
     double slow_speed_ = 0.0;
 };
@@ -446,8 +521,14 @@ public:
         : ts_(model), h_(setup.step), n_(static_cast<Eigen::Index>(model.nodes())), control_(new Control{}) {
         const TorsionalStringParams& p = model.params();
         sampled_ = p.control_period > 0.0;
-        per_control_ = sampled_ ? steps_per("TorsionalString", "control_period", p.control_period, h_) : 0;
+        explicit_drive_ = model.explicit_drive();
+        per_control_ = sampled_ ? steps_per("TorsionalString", "control_period", p.control_period, h_)
+                                : explicit_drive_ ? 1 : 0;
         exact_ = model.bit_on_bottom() && model.bit_treatment() == BitTreatment::exact;
+        if (explicit_drive_ && !sampled_ && !(h_ * p.proportional_gain < p.top_drive_inertia +
+                                                                          model.lumped().node_inertia[0]))
+            detail::reject("TorsionalString", "step",
+                           "below (I_TD + J_0) / k_p with a torque limit (the limited PI is explicit)", h_);
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
         MoreauJeanOptions o;
         o.step = setup.step;
@@ -455,11 +536,14 @@ public:
         o.treatment = setup.method == Method::explicit_projection ? ContactTreatment::projection
                                                                   : ContactTreatment::inclusion;
         o.projection_band = setup.projection_band;
+        if (setup.contact_solver == ContactSolverChoice::projected_gauss_seidel) o.contact_solver = ProjectedGaussSeidel{};
         o.record_events = false;  // hundreds of contacts: the run keeps the count (statistics), not the log
         if (exact_) {
             if (sampled_)  // the hold's sampling instants would be switches of their own
                 detail::reject("TorsionalString", "control_period", "0 (a continuous PI) with the exact bit",
                                p.control_period);
+            if (explicit_drive_)  // its update at each step's start would be one too
+                detail::reject("TorsionalString", "torque_limit", "0 (no limit) with the exact bit", p.torque_limit);
             MoreauJeanEventsOptions e;
             e.steps = std::move(o);
             e.time_tolerance = model.switch_tolerance();
@@ -467,9 +551,9 @@ public:
                 model.system(nullptr, false), std::vector<LumpedFriction>{model.bit_element()}, std::move(e), zero,
                 zero, setup.t_start);
         } else {
-            mj_ = std::make_unique<MoreauJean>(model.system(sampled_ ? &control_->held : nullptr), std::move(o), zero,
-                                               zero, setup.t_start);
-            if (sampled_) control();
+            mj_ = std::make_unique<MoreauJean>(model.system(explicit_drive_ ? &control_->held : nullptr), std::move(o),
+                                               zero, zero, setup.t_start);
+            if (explicit_drive_) control();
         }
         start_ = Start{setup.t_start, zero, zero, control_->held};
     }
@@ -510,7 +594,7 @@ public:
         }
         mj.step();
         ++steps_;
-        if (sampled_ && steps_ % per_control_ == 0) control();
+        if (explicit_drive_ && steps_ % per_control_ == 0) control();
         const double after = mj.velocities()(last);
         const int before_mode = sign(w), after_mode = sign(after);
         if (before_mode != after_mode)  // a release counts from the step's start (the bit broke loose within it)
@@ -541,20 +625,23 @@ public:
             held = start_.held;
         }
         const TorsionalStringParams& p = ts_.params();
+        const bool held_speed = ts_.holds_speed();
+        // node 0's speed: its dof's, or the prescribed one (its dof is held out of the inclusion, at rest)
+        const auto speed = [&](Eigen::Index i) { return i == 0 && held_speed ? ts_.setpoint_speed(t) : (*v)(i); };
         out[0] = (*v)(n_ - 1);
-        out[1] = (*v)(0);
-        out[2] = sampled_ ? held
-                          : p.proportional_gain * (ts_.setpoint_speed(t) - (*v)(0)) +
-                                p.integral_gain * (ts_.setpoint_angle(t) - (*q)(0));
+        out[1] = speed(0);
+        out[2] = held_speed       ? ts_.held_torque(t, (*q)(1), (*v)(1))
+                 : explicit_drive_ ? held
+                                   : p.proportional_gain * (ts_.setpoint_speed(t) - (*v)(0)) +
+                                         p.integral_gain * (ts_.setpoint_angle(t) - (*q)(0));
         Eigen::Index stuck = 0;
         const double slow = ts_.slow_speed();
-        for (Eigen::Index i = 0; i < n_; ++i) stuck += (slow > 0.0 ? std::abs((*v)(i)) < slow : (*v)(i) == 0.0) ? 1 : 0;
+        for (Eigen::Index i = 0; i < n_; ++i) stuck += (slow > 0.0 ? std::abs(speed(i)) < slow : speed(i) == 0.0) ? 1 : 0;
         out[3] = static_cast<double>(stuck) / static_cast<double>(n_);
         // the mode column as StringRig's: the wall contacts at rest (captured: exactly, v == 0); the bit's own
         // modes are in the events
         int walls_at_rest = 0;
-        for (std::size_t i : ts_.wall_contact_nodes())
-            walls_at_rest += (*v)(static_cast<Eigen::Index>(i)) == 0.0 ? 1 : 0;
+        for (std::size_t i : ts_.wall_contact_nodes()) walls_at_rest += speed(static_cast<Eigen::Index>(i)) == 0.0 ? 1 : 0;
         return walls_at_rest;
     }
 
@@ -591,14 +678,20 @@ private:
 
     static int sign(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 
-    /// A&S MAIN.m at a sampling instant: the set-point filter, then tau_m, then int e.
+    /// A&S MAIN.m at a sampling instant: the set-point filter, then tau_m, then int e. The continuous limited PI
+    /// at each step's start: the set-point itself, dt = h. With a limit (PiTopDrive's law): tau_m clamped to
+    /// +-T_max and int e frozen while it is (anti-windup).
     void control() {
         const TorsionalStringParams& p = ts_.params();
-        const double dt = p.control_period, T = p.setpoint_time_constant, w = mj_->velocities()(0);
+        const double T = p.setpoint_time_constant, w = mj_->velocities()(0), limit = p.torque_limit;
+        const double dt = sampled_ ? p.control_period : h_;
         Control& c = *control_;
-        c.setpoint = T > 0.0 ? c.setpoint + (p.speed_setpoint - c.setpoint) * dt / T : p.speed_setpoint;
-        c.held = p.proportional_gain * (c.setpoint - w) + p.integral_gain * c.integral;
-        c.integral += dt * (c.setpoint - w);
+        if (sampled_) c.setpoint = T > 0.0 ? c.setpoint + (p.speed_setpoint - c.setpoint) * dt / T : p.speed_setpoint;
+        else c.setpoint = ts_.setpoint_speed(mj_->time());
+        const double demand = p.proportional_gain * (c.setpoint - w) + p.integral_gain * c.integral;
+        const bool limited = limit > 0.0 && std::abs(demand) > limit;
+        c.held = limited ? std::copysign(limit, demand) : demand;
+        if (!limited) c.integral += dt * (c.setpoint - w);
     }
 
     void add_event(double t, int before, int after) {
@@ -616,7 +709,7 @@ private:
     const TorsionalString& ts_;
     double h_;
     Eigen::Index n_;
-    bool sampled_ = false, exact_ = false, kept_ = false;
+    bool sampled_ = false, explicit_drive_ = false, exact_ = false, kept_ = false;
     long per_control_ = 0, steps_ = 0;
     std::unique_ptr<Control> control_;  // a stable address for the force closure
     std::unique_ptr<MoreauJean> mj_;
