@@ -1,14 +1,17 @@
 // A drill string on the event-driven engine (issue 13, item 3): the lumped string of sections.hpp (N elements,
 // node 0 at the top, node N at the bit), in torsion and optionally axially, sized at run time.
-//   J_i dw_i/dt = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
+//   J_i dw_i/dt = tau_i - tau_{i-1} - k_t J_s,i w_i [+ T_m at node 0] - T_wall,i [- T_bit at node N]
 //   m_i dv_i/dt = F_i - F_{i-1} + w_b,i cos I_i [- H at node 0] [+ F_x sin(2 pi f_x t) at node k] - F_wall,i [- W]
 //   tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e), and the same for the axial force F_e with E A / dx
-// (structural damping proportional to stiffness: modal damping ratio beta w / 2 at frequency w; positions and
-// axial speeds positive down the hole).
+// (structural damping proportional to stiffness: modal damping ratio beta w / 2 at frequency w; k_t, damping_rate,
+// Aarsnes & Shor's viscous damping against absolute rotation, k_t rho J w per unit length, i.e. k_t times node i's
+// string inertia J_s,i (without the drive's and the BHA's: TorsionalString's C(i, i)); positions and axial speeds
+// positive down the hole).
 //  * the top drive (top_drive.hpp, the Drive parameter): a motor whose torque T_m acts on node 0 and whose inertia
 //    adds to it (PiTopDrive: paper 001's PI speed control with a torque limit), or a prescribed surface speed
 //    (w_0 = w_set held, the torque it takes recorded as work), or a user's own type of the drive concept. The
-//    default, TopDriveChoice, picks PiTopDrive or PrescribedSpeed from StringRigSetup::top_drive.
+//    default, TopDriveChoice, picks PiTopDrive or PrescribedSpeed from StringRigSetup::top_drive; both ramp the
+//    set speed as w_set (1 - exp(-t / T_SP)) (setpoint_time_constant; 0: a step).
 //  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
 //  * the hole's inclination I_i at each node: the straight hole's, or given per node (a surveyed well:
 //    string_geometry.hpp builds the set-up from a Survey).
@@ -24,7 +27,8 @@
 // States, node by node so that the Jacobian is banded: the drive's (speed_error_integral), then per node theta_i, omega_i,
 // [u_i, v_i], [the wall law's states], then the bit law's states and six work integrals that close the balance
 //   drive_work + hoist_work + excitation_work = change of (kinetic + elastic + gravity potential energy)
-//                                               + wall_friction_work + damping_work + bit_work.
+//                                               + wall_friction_work + damping_work + bit_work
+// (damping_work: the elements' dampers' and k_t's).
 // The work integrals do not feed back, and their rows (which read every node) are left out of the analytic
 // Jacobian: they enter the Newton iteration linearly and converge with the other states.
 // Modes (ContactModes): one per wall contact, then the bit's, then the top drive's when it has switching
@@ -173,7 +177,7 @@ public:
         for (std::size_t k = 0; k < drive_guard_count(); ++k) add_guard(drive_slot_, k);
         start_ = std::vector<double>(state_size(), 0.0);
         for (std::size_t i = 0; i <= n; ++i) {
-            start_[omega(i)] = i == 0 && drive_.holds_speed() ? drive_.held_speed() : p_.initial_speed;
+            start_[omega(i)] = i == 0 && drive_.holds_speed() ? drive_held_speed(drive_, 0.0) : p_.initial_speed;
             if (axial_)
                 start_[speed(i)] = i == 0 && setup_.hoisting == Hoisting::hook_speed ? p_.hook_speed
                                                                                      : p_.initial_axial_speed;
@@ -256,16 +260,24 @@ public:
         const double k = lumped_.axial_stiffness[e];
         return k * (x[position(e + 1)] - x[position(e)]) + p_.damping_time * k * (x[speed(e + 1)] - x[speed(e)]);
     }
-    /// What the drive sees of node 0 (string_torque: element 0's torque on it).
-    DriveInput drive_input(const double* x, double string_torque) const {
-        return {x + drive_state(0), x[omega(0)], string_torque, inertia_[0]};
+    /// k_t J_s,i w_i, N m: node i's viscous torque against its absolute rotation (damping_rate).
+    double rotation_damping(const double* x, std::size_t i) const {
+        return p_.damping_rate * lumped_.node_inertia[i] * x[omega(i)];
     }
-    DriveInput drive_input(const double* x) const { return drive_input(x, element_torque(x, 0)); }
+    /// What the drive sees of node 0 at t (string_torque: everything on node 0 but the motor).
+    DriveInput drive_input(double t, const double* x, double string_torque) const {
+        return {x + drive_state(0), x[omega(0)], string_torque, inertia_[0], t};
+    }
+    DriveInput drive_input(double t, const double* x) const {
+        double s = element_torque(x, 0);
+        if (p_.damping_rate > 0.0) s -= rotation_damping(x, 0);
+        return drive_input(t, x, s);
+    }
     /// The drive's mode (0 for a drive without switching functions).
     int drive_mode(const ContactModes& mode) const { return drive_has_slot() ? mode[drive_slot_] : 0; }
     /// The motor's torque T_m on node 0, N m (0 for a drive that holds the speed: surface_torque() is what it takes).
-    double motor_torque(const double* x, const ContactModes& mode) const {
-        return drive_.holds_speed() ? 0.0 : drive_.torque(drive_input(x), drive_mode(mode));
+    double motor_torque(double t, const double* x, const ContactModes& mode) const {
+        return drive_.holds_speed() ? 0.0 : drive_.torque(drive_input(t, x), drive_mode(mode));
     }
     double excitation_force(double t) const {
         return p_.excitation_amplitude * std::sin(2.0 * pi * p_.excitation_frequency * t);
@@ -278,10 +290,15 @@ public:
     }
     /// The torque the surface applies, N m: the motor's, or what holds the prescribed speed.
     double surface_torque(double t, const double* x, const ContactModes& mode) const {
-        if (!drive_.holds_speed()) return motor_torque(x, mode);
+        if (!drive_.holds_speed()) return motor_torque(t, x, mode);
         double s = 0.0, a = 0.0;
         loads(t, x, mode, 0, s, a);
-        return -s;
+        return held_torque(t, s);
+    }
+    /// What holds node 0 at the drive's speed against the loads S_0 on it: J_0 dw_set/dt - S_0, N m.
+    double held_torque(double t, double s) const {
+        const double a = drive_held_acceleration(drive_, t);
+        return a != 0.0 ? inertia_[0] * a - s : -s;
     }
     /// The hook's force on the string, N, positive up: H, or what holds the prescribed hook speed.
     double hook_force(double t, const double* x, const ContactModes& mode) const {
@@ -352,7 +369,7 @@ public:
                 }
         }
         if (drive_has_slot())
-            drive_.guards(drive_input(x), top_acceleration(t, x, mode), drive_mode(mode), g + k);
+            drive_.guards(drive_input(t, x), top_acceleration(t, x, mode), drive_mode(mode), g + k);
     }
 
     /// The states guard i reads (root_location.hpp's local guards): its node's and its neighbours' blocks (node
@@ -366,7 +383,7 @@ public:
         const std::size_t slot = guard_slot_[i];
         std::array<double, kMaxSlotGuards> g{};
         if (slot == drive_slot_ && drive_has_slot() && !(on_bottom && slot == bit_slot_)) {
-            drive_.guards(drive_input(x), top_acceleration(t, x, mode), drive_mode(mode), g.data());
+            drive_.guards(drive_input(t, x), top_acceleration(t, x, mode), drive_mode(mode), g.data());
             return g[guard_rank_[i]];
         }
         const std::size_t node = guard_node(slot);
@@ -434,12 +451,14 @@ public:
                 }
             }
             if (i == 0) {
-                top = drive_input(x, below.torque - above.torque);
+                double string_torque = below.torque - above.torque;
+                if (p_.damping_rate > 0.0) string_torque -= rotation_damping(x, 0);
+                top = drive_input(t, x, string_torque);
                 if (!drive_.holds_speed()) {
                     power[drive_work] = drive_.torque(top, drive_mode(mode)) * w;
                 } else {
-                    power[drive_work] = -s * w;  // the torque that holds w_0 at w_set
-                    dw = 0.0;
+                    power[drive_work] = held_torque(t, s) * w;  // the torque that holds w_0 at w_set(t)
+                    dw = drive_held_acceleration(drive_, t);
                 }
                 if (axial_) {
                     if (setup_.hoisting == Hoisting::hook_speed) {
@@ -465,6 +484,7 @@ public:
                 }
                 power[damping_work] += d;
             }
+            if (p_.damping_rate > 0.0) power[damping_work] += rotation_damping(x, i) * w;
         }
         drive_.rates(top, dx[omega(0)], drive_mode(mode), dx + drive_state(0));
         if (g != nullptr && drive_has_slot()) drive_.guards(top, dx[omega(0)], drive_mode(mode), g + k);
@@ -483,7 +503,7 @@ public:
     template <class Add, class L = WallLaw, class B = Bit, class D = Drive,
               std::enable_if_t<law_has_partials_v<L> && law_has_partials_v<B> && top_drive_has_partials_v<D>, int> = 0>
     void jacobian_entries(double t, const double* x, const ContactModes& mode, Add&& add) const {
-        const DriveInput top = drive_input(x);
+        const DriveInput top = drive_input(t, x);
         const int m = drive_mode(mode);
         std::array<double, kMaxDriveStates> follow{}, d_state{};  // d(dz_j/dt)/d(dw_0/dt); a row's d/dz
         bool follows = false;
@@ -574,10 +594,11 @@ private:
             if (torque_share != 0.0) {
                 const double f = torque_share / inertia_[i];
                 add_element_partials(add, i, f, beta, lumped_.torsional_stiffness, &StringRig::theta, &StringRig::omega);
+                if (p_.damping_rate > 0.0) add(omega(i), omega(i), -f * p_.damping_rate * lumped_.node_inertia[i]);
                 if (i == 0 && !drive_.holds_speed()) {  // T_m's partials
                     std::array<double, kMaxDriveStates> d_state{};
                     double d_speed = 0.0;
-                    drive_.torque_partials(drive_input(x), drive_mode(mode), d_speed, d_state.data());
+                    drive_.torque_partials(drive_input(t, x), drive_mode(mode), d_speed, d_state.data());
                     if (d_speed != 0.0) add(omega(0), omega(0), f * d_speed);
                     for (std::size_t j = 0; j < drive_states_; ++j)
                         if (d_state[j] != 0.0) add(omega(0), drive_state(j), f * d_state[j]);
@@ -640,7 +661,7 @@ public:
 
     ContactModes initial_mode(double t, const double* x) const {
         ContactModes mode(slots_, 0);
-        if (drive_has_slot()) mode[drive_slot_] = static_cast<std::int8_t>(drive_.initial_mode(drive_input(x)));
+        if (drive_has_slot()) mode[drive_slot_] = static_cast<std::int8_t>(drive_.initial_mode(drive_input(t, x)));
         const std::size_t n = setup_.elements;
         for (std::size_t i = 0; i <= n; ++i) {
             const std::size_t c = contact_of_[i];
@@ -699,7 +720,8 @@ public:
             }
         }
         if (drive_has_slot() && any(fired + k, drive_guard_count()))
-            next[drive_slot_] = static_cast<std::int8_t>(drive_.switch_mode(drive_input(x), next[drive_slot_], fired + k));
+            next[drive_slot_] =
+                static_cast<std::int8_t>(drive_.switch_mode(drive_input(t, x), next[drive_slot_], fired + k));
         return next;
     }
 
@@ -777,8 +799,9 @@ private:
     void loads_between(double t, const double* x, const ContactModes& mode, std::size_t i, const ElementLoads& above,
                        const ElementLoads& below, double& torque, double& axial) const {
         torque = below.torque - above.torque;
+        if (p_.damping_rate > 0.0) torque -= rotation_damping(x, i);
         axial = 0.0;
-        if (i == 0 && !drive_.holds_speed()) torque += drive_.torque(drive_input(x, torque), drive_mode(mode));
+        if (i == 0 && !drive_.holds_speed()) torque += drive_.torque(drive_input(t, x, torque), drive_mode(mode));
         if (!axial_) return;
         axial = below.tension - above.tension + weight_[i];
         if (i == 0 && setup_.hoisting == Hoisting::hook_load) axial -= p_.hook_load;
@@ -787,10 +810,11 @@ private:
     }
 
     /// Node i's loads (S, P) as they are and with the node itself at rest: its own velocity's share of the element
-    /// dampers removed (d S / d w_i = -beta (k_{i-1} + k_i), the same axially). What a planar contact would have
-    /// to hold once stuck (wall_contact.hpp).
+    /// dampers removed (d S / d w_i = -beta (k_{i-1} + k_i) - k_t J_s,i, the same axially without k_t). What a
+    /// planar contact would have to hold once stuck (wall_contact.hpp).
     PlanarLoads planar_loads(const double* x, std::size_t i, double torque, double axial) const {
         PlanarLoads l{torque, axial, torque, axial};
+        if (p_.damping_rate > 0.0) l.hold_torque += rotation_damping(x, i);
         if (p_.damping_time == 0.0) return l;
         double kt = 0.0, ka = 0.0;
         if (i > 0) {

@@ -36,11 +36,13 @@ struct StringRigParams {
     double initial_axial_speed = 0.0;   ///< m/s: the whole string's axial speed at t = 0
     double end_inertia = 0.0;           ///< J_end, kg m^2: a rigid BHA (or bit sub) added to node N
     double end_mass = 0.0;              ///< m_end, kg: its mass (its buoyed weight joins node N's)
+    double damping_rate = 0.0;          ///< k_t, 1/s: viscous torque -k_t J_i w_i at node i (J_i its string inertia)
+    double setpoint_time_constant = 0.0;  ///< T_SP, s: the set speed ramps as w_set (1 - exp(-t / T_SP)); 0: a step
 
-    static constexpr std::array<Field<StringRigParams>, 17> fields();
+    static constexpr std::array<Field<StringRigParams>, 19> fields();
 };
 
-inline constexpr std::array<Field<StringRigParams>, 17> StringRigParams::fields() {
+inline constexpr std::array<Field<StringRigParams>, 19> StringRigParams::fields() {
     using P = StringRigParams;
     return {{
         {"damping_time", "beta", "s", Rule::non_negative(), &P::damping_time,
@@ -70,6 +72,11 @@ inline constexpr std::array<Field<StringRigParams>, 17> StringRigParams::fields(
         {"end_inertia", "J_end", "kg m^2", Rule::non_negative(), &P::end_inertia,
          "Inertia of a rigid BHA added to the bit node."},
         {"end_mass", "m_end", "kg", Rule::non_negative(), &P::end_mass, "Mass of a rigid BHA added to the bit node."},
+        {"damping_rate", "k_t", "1/s", Rule::non_negative(), &P::damping_rate,
+         "Viscous damping against absolute rotation (Aarsnes & Shor's k_t): torque k_t J_i w_i at each node, J_i the "
+         "node's string inertia (k_t rho J w per unit length)."},
+        {"setpoint_time_constant", "T_SP", "s", Rule::non_negative(), &P::setpoint_time_constant,
+         "Set-point ramp: the set (or prescribed) speed is w_set (1 - exp(-t / T_SP)) from rest; 0: a step."},
     }};
 }
 
