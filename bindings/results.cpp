@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -88,6 +89,14 @@ void register_results(py::module_& m) {
         .value("band", LinearSolver::band, "band LU: a drill string's nodes couple only their neighbours")
         .value("sparse", LinearSolver::sparse, "KLU (SuiteSparse) on the system's sparsity pattern");
 
+    py::enum_<ContactSolverChoice>(m, "ContactSolver",
+                                   "Solver of moreau_jean's one-step contact problem (SolverOptions.contact_solver).")
+        .value("active_set", ContactSolverChoice::active_set,
+               "the exact active set (on a string, its chain LDL^T updated from the switched contacts)")
+        .value("projected_gauss_seidel", ContactSolverChoice::projected_gauss_seidel,
+               "projected Gauss-Seidel sweeps (Jean 1999): the same steps where the law is monotone (static == "
+               "kinetic), slower");
+
     py::class_<StopCondition>(m, "StopCondition",
                               "A stop condition evaluated in the engine as the run goes (SciPy solve_ivp's events): a "
                               "state crossing a level, or a switch into a named mode. Its crossings are logged "
@@ -122,7 +131,21 @@ void register_results(py::module_& m) {
         });
 
     py::class_<SolverOptions>(m, "SolverOptions", "Options of simulate(); validated when the run starts.")
-        .def(py::init<>())
+        .def(py::init([](const py::kwargs& kwargs) {
+                 auto o = std::make_unique<SolverOptions>();
+                 const py::object view = py::cast(o.get(), py::return_value_policy::reference);
+                 const py::object property = py::module_::import("builtins").attr("property");
+                 for (auto item : kwargs) {  // any option by its attribute's name, as assigning it would
+                     const std::string key = py::str(item.first);
+                     const py::object attribute = py::type::of(view).attr("__dict__").attr("get")(key);
+                     if (key.rfind('_', 0) == 0 || !py::isinstance(attribute, property) ||
+                         attribute.attr("fset").is_none())
+                         throw py::type_error("SolverOptions() got an unexpected keyword argument '" + key + "'");
+                     py::setattr(view, item.first, item.second);
+                 }
+                 return o;
+             }),
+             "SolverOptions(**options): the engine's defaults, any option (an attribute) set by keyword.")
         .def_readwrite("method", &SolverOptions::method)
         .def_readwrite("linear_solver", &SolverOptions::linear_solver)
         .def_readwrite("rtol", &SolverOptions::rtol)
@@ -143,6 +166,23 @@ void register_results(py::module_& m) {
         .def_readwrite("step", &SolverOptions::step)
         .def_readwrite("theta", &SolverOptions::theta)
         .def_readwrite("projection_band", &SolverOptions::projection_band)
+        .def_property(
+            "contact_solver", [](const SolverOptions& o) { return o.contact_solver; },
+            [](SolverOptions& o, const py::object& value) {
+                if (py::isinstance<ContactSolverChoice>(value)) {
+                    o.contact_solver = value.cast<ContactSolverChoice>();
+                    return;
+                }
+                const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
+                if (s == "active_set") o.contact_solver = ContactSolverChoice::active_set;
+                else if (s == "projected_gauss_seidel") o.contact_solver = ContactSolverChoice::projected_gauss_seidel;
+                else
+                    throw InvalidParameter("contact_solver", "SolverOptions: contact_solver must be 'active_set' or "
+                                                             "'projected_gauss_seidel' (got " +
+                                                             std::string(py::repr(value)) + ")");
+            },
+            "moreau_jean's one-step contact solver: ContactSolver or its name ('active_set', the default, or "
+            "'projected_gauss_seidel'); the other methods refuse anything but the default.")
         .def_readonly_static("max_rtol", &SolverOptions::max_rtol)
         .def_readonly_static("min_rtol", &SolverOptions::min_rtol)
         .def("validate", &SolverOptions::validate, py::arg("state_size") = 1,

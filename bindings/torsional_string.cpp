@@ -36,6 +36,16 @@ constexpr double default_switch_tolerance = 1e-10;
 enum class Treatment { captured, mixed };
 
 const char* treatment_name(Treatment t) { return t == Treatment::captured ? "captured" : "mixed"; }
+/// StringRig's names of the top drive's kinds (its keyword top_drive).
+const char* drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
+
+TopDrive drive_from(py::handle value) {
+    const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
+    if (s == "pi_motor") return TopDrive::pi_motor;
+    if (s == "prescribed_speed") return TopDrive::prescribed_speed;
+    throw InvalidParameter("top_drive", std::string(name) + ": top_drive must be 'pi_motor' or 'prescribed_speed' "
+                                            "(got " + std::string(py::repr(value)) + ")");
+}
 
 std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
 
@@ -130,18 +140,20 @@ struct BoundTorsionalString {
     std::optional<std::vector<double>> radius;  ///< as given; none: each section's OD / 2
     std::optional<NavarroLopezBit> bit;         ///< as given; none: the default NavarroLopezBit
     Treatment treatment;
+    TopDrive drive;
     double slow_speed, switch_tolerance;
     TorsionalString model;
 
     BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, GivenSurvey sv,
                          std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t,
-                         double slow, double tolerance)
+                         TopDrive d, double slow, double tolerance)
         : string(std::move(s)), params(p), elements(n), survey(std::move(sv)), radius(std::move(r)), bit(std::move(b)),
-          treatment(t), slow_speed(slow), switch_tolerance(tolerance),
+          treatment(t), drive(d), slow_speed(slow), switch_tolerance(tolerance),
           model(checked(string, survey.survey, treatment, params, elements), params, elements, survey.survey,
                 radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {
         model.set_bit_treatment(t == Treatment::mixed ? BitTreatment::exact : BitTreatment::captured, tolerance);
         model.set_slow_speed(slow);
+        model.set_top_drive(d);
     }
 
 private:
@@ -175,6 +187,7 @@ py::dict extras_of(const BoundTorsionalString& r) {
     d["contact_radius"] = r.radius ? py::cast(*r.radius) : py::object(py::none());
     d["bit"] = r.bit ? py::cast(*r.bit) : py::object(py::none());
     d["treatment"] = treatment_name(r.treatment);
+    d["top_drive"] = drive_name(r.drive);
     d["slow_speed"] = r.slow_speed;
     d["switch_tolerance"] = r.switch_tolerance;
     return d;
@@ -191,6 +204,7 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
     std::optional<std::vector<double>> radius;
     std::optional<NavarroLopezBit> bit;
     Treatment treatment = Treatment::captured;
+    TopDrive drive = TopDrive::pi_motor;
     double slow_speed = 0.0, switch_tolerance = default_switch_tolerance;
     const auto given = [&](const char* key) {
         const bool present = kwargs.contains(key) && !kwargs[key].is_none();
@@ -218,19 +232,21 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
         bit = b.cast<NavarroLopezBit>();
     }
     if (given("treatment")) treatment = treatment_from(kwargs["treatment"]);
+    if (given("top_drive")) drive = drive_from(kwargs["top_drive"]);
     if (given("slow_speed")) slow_speed = real_from(kwargs["slow_speed"], "slow_speed");
     if (given("switch_tolerance")) switch_tolerance = real_from(kwargs["switch_tolerance"], "switch_tolerance");
     if (used != kwargs.size())
         for (auto item : kwargs) {
             const std::string key = py::str(item.first);
             bool known = key == "elements" || key == "survey" || key == "contact_radius" || key == "bit" ||
-                         key == "treatment" || key == "slow_speed" || key == "switch_tolerance";
+                         key == "treatment" || key == "top_drive" || key == "slow_speed" ||
+                         key == "switch_tolerance";
             for (const Field<TorsionalStringParams>& f : fields) known = known || key == f.public_name();
             if (!known)
                 throw py::type_error(std::string(name) + "() got an unexpected keyword argument '" + key + "'");
         }
     return BoundTorsionalString(string.cast<DrillString>(), p, static_cast<std::size_t>(elements), std::move(survey),
-                                std::move(radius), std::move(bit), treatment, slow_speed, switch_tolerance);
+                                std::move(radius), std::move(bit), treatment, drive, slow_speed, switch_tolerance);
 }
 
 /// simulate_variant's run for a time-stepping model: the GIL released, Ctrl-C polled between steps.
@@ -256,7 +272,10 @@ event and drowns in them at a thousand contacts).
                F_c(x) = mu sin(inc(x)) g rho A (1 - rho_mud / rho) r_o (A&S eq 6), kinetic f_rat times it; below
                omega_c a slipping node keeps the static level (A&S eq 4)
     top drive: I_TD at node 0 under the PI tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10),
-               continuous or sampled every control_period (zero-order hold, as A&S's code)
+               continuous or sampled every control_period (zero-order hold, as A&S's code); with torque_limit
+               T_max > 0 clamped to +-T_max, the integral frozen while limited (StringRig's PI drive; the
+               continuous limited PI is then taken from each step's start: first order in the step); or
+               top_drive="prescribed_speed": node 0 turns at omega_SP(t), motor_torque what that takes
     bit:       off bottom (weight_on_bit = 0): the bit torque T_b; on bottom: the velocity-weakening bit (a
                NavarroLopezBit under weight_on_bit) merged with node N's wall contact
 
@@ -280,6 +299,9 @@ bit : NavarroLopezBit, optional
 treatment : {"captured", "mixed"}
     "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
     located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+top_drive : {"pi_motor", "prescribed_speed"}
+    As fs.StringRig's: the PI motor (torque_limit: its limit, 0 none), or node 0 held at the set-point speed
+    (no controller: control_period and torque_limit must be 0).
 
 Keywords
 --------
@@ -298,7 +320,8 @@ py::object register_torsional_string(py::module_& m) {
         signature += ", " + std::string(f.public_name()) + ": float = " + format_double(defaults.*(f.member));
     signature += ", elements: int = " + std::to_string(default_elements) +
                  ", survey: object | None = None, contact_radius: collections.abc.Sequence[float] | None = None, "
-                 "bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, "
+                 "bit: NavarroLopezBit | None = None, treatment: str = 'captured', top_drive: str = 'pi_motor', "
+                 "slow_speed: float = 0.0, "
                  "switch_tolerance: float = " + format_double(default_switch_tolerance) + ") -> None\n\n"
                  "The string, then the set-up and the parameters by keyword (see the class docstring).\n";
     py::options options;
@@ -328,6 +351,8 @@ py::object register_torsional_string(py::module_& m) {
         .def_property_readonly("bit", [](const BoundTorsionalString& r) { return r.model.bit_law(); },
                                "The on-bottom bit's law (NavarroLopezBit).")
         .def_property_readonly("treatment", [](const BoundTorsionalString& r) { return treatment_name(r.treatment); })
+        .def_property_readonly("top_drive", [](const BoundTorsionalString& r) { return drive_name(r.drive); },
+                               "'pi_motor' or 'prescribed_speed' (StringRig's top_drive).")
         .def_property_readonly("bit_on_bottom", [](const BoundTorsionalString& r) { return r.model.bit_on_bottom(); })
         .def_property_readonly("period", [](const BoundTorsionalString&) { return py::none(); },
                                "None: the string has no imposed period (its stick-slip period is an outcome).")
@@ -375,6 +400,7 @@ py::object register_torsional_string(py::module_& m) {
                 const std::string key = py::str(item.first);
                 if (item.second.is_none()) continue;
                 if (key == "treatment" && r.treatment == Treatment::captured) continue;
+                if (key == "top_drive" && r.drive == TopDrive::pi_motor) continue;
                 if (key == "slow_speed" && r.slow_speed == 0.0) continue;
                 if (key == "switch_tolerance" && r.switch_tolerance == default_switch_tolerance) continue;
                 out += ", " + key + "=" + std::string(py::repr(item.second));

@@ -8,7 +8,7 @@ import collections.abc
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_EIGEN', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'Leuven', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopez2Dof', 'NavarroLopez4Dof', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'TorsionalString', 'aarsnes_shor_well_b', 'automatic_treatment', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
+__all__: list[str] = ['AxialVibrationRig', 'CallableLaw', 'ContactSolver', 'Coulomb', 'Dahl', 'DetournayBit', 'DrillString', 'ElastoPlastic', 'Event', 'EventLog', 'FRICTION_LAWS', 'GeneralizedMaxwellSlip', 'HAS_EIGEN', 'HAS_SUNDIALS', 'HydraulicOscillator', 'HydraulicOscillatorParams', 'HystereticFriction', 'KinematicRig', 'Leuven', 'LinearSolver', 'LuGre', 'Method', 'NavarroLopez2Dof', 'NavarroLopez4Dof', 'NavarroLopezBit', 'OscillatorDragResult', 'OscillatorResponse', 'Parameter', 'PipeSection', 'PowerLawCoefficient', 'RIGS', 'RawResult', 'SoftString', 'SolverOptions', 'StopCondition', 'Stribeck', 'StringRig', 'Survey', 'TorqueDragResult', 'TorsionalRig', 'TorsionalString', 'aarsnes_shor_well_b', 'automatic_treatment', 'equivalent_rig_normal_force', 'hot_contact_stress', 'hot_relative_curvature', 'hot_weight_per_length_in_mud', 'limit_cycle', 'mean_from_integral', 'mean_over_cycles', 'mean_over_window', 'paper001_fig7_friction', 'rig_contact_stress', 'rock_steel_contact_compliance', 'table5', 'vibration_velocity_amplitude', 'whole_cycle_window']
 class Parameter:
     """
     One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -873,6 +873,53 @@ class LinearSolver:
     @property
     def value(self) -> int:
         ...
+class ContactSolver:
+    """
+    Solver of moreau_jean's one-step contact problem (SolverOptions.contact_solver).
+    
+    Members:
+    
+      active_set : the exact active set (on a string, its chain LDL^T updated from the switched contacts)
+    
+      projected_gauss_seidel : projected Gauss-Seidel sweeps (Jean 1999): the same steps where the law is monotone (static == kinetic), slower
+    """
+    __members__: typing.ClassVar[dict[str, ContactSolver]]
+    active_set: typing.ClassVar[ContactSolver]
+    projected_gauss_seidel: typing.ClassVar[ContactSolver]
+    @typing.overload
+    def __eq__(self, other: ContactSolver) -> bool:
+        ...
+    @typing.overload
+    def __eq__(self, other: typing.Any) -> bool:
+        ...
+    def __getstate__(self) -> int:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __index__(self) -> int:
+        ...
+    def __init__(self, value: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __int__(self) -> int:
+        ...
+    @typing.overload
+    def __ne__(self, other: ContactSolver) -> bool:
+        ...
+    @typing.overload
+    def __ne__(self, other: typing.Any) -> bool:
+        ...
+    def __repr__(self) -> typing.Any:
+        ...
+    def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    def __str__(self) -> str:
+        ...
+    @property
+    def name(self) -> str:
+        ...
+    @property
+    def value(self) -> int:
+        ...
 class StopCondition:
     """
     A stop condition evaluated in the engine as the run goes (SciPy solve_ivp's events): a state crossing a level, or a switch into a named mode. Its crossings are logged (Result.t_events, y_events); a terminal one ends the run there (Result.status 1).
@@ -914,8 +961,10 @@ class SolverOptions:
     record_event_rows: bool
     record_event_states: bool | None
     record_steps: bool
-    def __init__(self) -> None:
-        ...
+    def __init__(self, **kwargs) -> None:
+        """
+        SolverOptions(**options): the engine's defaults, any option (an attribute) set by keyword.
+        """
     def __repr__(self) -> typing.Any:
         ...
     def validate(self, state_size: typing.SupportsInt | typing.SupportsIndex = 1) -> None:
@@ -933,6 +982,14 @@ class SolverOptions:
         ...
     @atol_per_state.setter
     def atol_per_state(self, arg0: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex]) -> None:
+        ...
+    @property
+    def contact_solver(self) -> ContactSolver:
+        """
+        moreau_jean's one-step contact solver: ContactSolver or its name ('active_set', the default, or 'projected_gauss_seidel'); the other methods refuse anything but the default.
+        """
+    @contact_solver.setter
+    def contact_solver(self, arg1: typing.Any) -> None:
         ...
     @property
     def event_window(self) -> float:
@@ -2042,9 +2099,13 @@ class StringRig:
         J_end [kg m^2], non-negative and finite: Inertia of a rigid BHA added to the bit node.
     end_mass : float = 0
         m_end [kg], non-negative and finite: Mass of a rigid BHA added to the bit node.
+    damping_rate : float = 0
+        k_t [1/s], non-negative and finite: Viscous damping against absolute rotation (Aarsnes & Shor's k_t): torque k_t J_i w_i at each node, J_i the node's string inertia (k_t rho J w per unit length).
+    setpoint_time_constant : float = 0
+        T_SP [s], non-negative and finite: Set-point ramp: the set (or prescribed) speed is w_set (1 - exp(-t / T_SP)) from rest; 0: a step.
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.283185307179586, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
+    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.283185307179586, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, damping_rate: float = 0, setpoint_time_constant: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
         """
         The string, the wall law, then the rig's set-up and parameters by keyword (see the class docstring).
         """
@@ -2090,6 +2151,11 @@ class StringRig:
     def contact_nodes(self) -> list[int]:
         """
         The nodes with a wall contact (as the rig placed them).
+        """
+    @property
+    def damping_rate(self) -> float:
+        """
+        k_t [1/s]: Viscous damping against absolute rotation (Aarsnes & Shor's k_t): torque k_t J_i w_i at each node, J_i the node's string inertia (k_t rho J w per unit length).
         """
     @property
     def damping_time(self) -> float:
@@ -2204,6 +2270,11 @@ class StringRig:
     def proportional_gain(self) -> float:
         """
         k_p [N m s/rad]: PI proportional gain.
+        """
+    @property
+    def setpoint_time_constant(self) -> float:
+        """
+        T_SP [s]: Set-point ramp: the set (or prescribed) speed is w_set (1 - exp(-t / T_SP)) from rest; 0: a step.
         """
     @property
     def state_names(self) -> list[str]:
@@ -2637,7 +2708,10 @@ class TorsionalString:
                    F_c(x) = mu sin(inc(x)) g rho A (1 - rho_mud / rho) r_o (A&S eq 6), kinetic f_rat times it; below
                    omega_c a slipping node keeps the static level (A&S eq 4)
         top drive: I_TD at node 0 under the PI tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10),
-                   continuous or sampled every control_period (zero-order hold, as A&S's code)
+                   continuous or sampled every control_period (zero-order hold, as A&S's code); with torque_limit
+                   T_max > 0 clamped to +-T_max, the integral frozen while limited (StringRig's PI drive; the
+                   continuous limited PI is then taken from each step's start: first order in the step); or
+                   top_drive="prescribed_speed": node 0 turns at omega_SP(t), motor_torque what that takes
         bit:       off bottom (weight_on_bit = 0): the bit torque T_b; on bottom: the velocity-weakening bit (a
                    NavarroLopezBit under weight_on_bit) merged with node N's wall contact
     
@@ -2661,6 +2735,9 @@ class TorsionalString:
     treatment : {"captured", "mixed"}
         "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
         located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+    top_drive : {"pi_motor", "prescribed_speed"}
+        As fs.StringRig's: the PI motor (torque_limit: its limit, 0 none), or node 0 held at the set-point speed
+        (no controller: control_period and torque_limit must be 0).
     
     Keywords
     --------
@@ -2698,9 +2775,11 @@ class TorsionalString:
         g [m/s^2], positive and finite: Acceleration of gravity.
     weight_on_bit : float = 0
         W [N], non-negative and finite: Weight on bit of the velocity-weakening bit at node N; 0: off bottom.
+    torque_limit : float = 0
+        T_max [N m], non-negative and finite: Top-drive torque limit: the PI's torque clamped to +-T_max, its integral frozen while limited (anti-windup); 0: no limit.
     """
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, *, top_drive_inertia: float = 2900, proportional_gain: float = 38000, integral_gain: float = 100000, speed_setpoint: float = 4.1887902047863905, setpoint_time_constant: float = 1, control_period: float = 0, friction_coefficient: float = 0.3, kinetic_ratio: float = 0.65, stick_band_speed: float = 0, inclination: float = 1.0471975511965976, mud_density: float = 0, damping_rate: float = 0, damping_time: float = 0, bha_inertia: float = 0, bit_torque: float = 0, gravity: float = 9.81, weight_on_bit: float = 0, elements: int = 200, survey: typing.Any | None = None, contact_radius: collections.abc.Sequence[float] | None = None, bit: NavarroLopezBit | None = None, treatment: str = 'captured', slow_speed: float = 0.0, switch_tolerance: float = 1e-10) -> None:
+    def __init__(self, string: DrillString, *, top_drive_inertia: float = 2900, proportional_gain: float = 38000, integral_gain: float = 100000, speed_setpoint: float = 4.1887902047863905, setpoint_time_constant: float = 1, control_period: float = 0, friction_coefficient: float = 0.3, kinetic_ratio: float = 0.65, stick_band_speed: float = 0, inclination: float = 1.0471975511965976, mud_density: float = 0, damping_rate: float = 0, damping_time: float = 0, bha_inertia: float = 0, bit_torque: float = 0, gravity: float = 9.81, weight_on_bit: float = 0, torque_limit: float = 0, elements: int = 200, survey: typing.Any | None = None, contact_radius: collections.abc.Sequence[float] | None = None, bit: NavarroLopezBit | None = None, treatment: str = 'captured', top_drive: str = 'pi_motor', slow_speed: float = 0.0, switch_tolerance: float = 1e-10) -> None:
         """
         The string, then the set-up and the parameters by keyword (see the class docstring).
         """
@@ -2892,6 +2971,11 @@ class TorsionalString:
     def switch_tolerance(self) -> float:
         ...
     @property
+    def top_drive(self) -> str:
+        """
+        'pi_motor' or 'prescribed_speed' (StringRig's top_drive).
+        """
+    @property
     def top_drive_inertia(self) -> float:
         """
         I_TD [kg m^2]: Top drive inertia.
@@ -2900,6 +2984,11 @@ class TorsionalString:
     def top_drive_twist(self) -> float:
         """
         A&S eq 29 at x = 0: int_0^L tau(x) / (J G)(x) dx [rad], tau(x) = int_x^L F_c: the twist of the string holding the break-off torque profile.
+        """
+    @property
+    def torque_limit(self) -> float:
+        """
+        T_max [N m]: Top-drive torque limit: the PI's torque clamped to +-T_max, its integral frozen while limited (anti-windup); 0: no limit.
         """
     @property
     def treatment(self) -> str:

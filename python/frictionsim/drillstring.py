@@ -77,7 +77,7 @@ SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elem
           "bit": "bit", "weight_on_bit": "weight_on_bit", "inclination": "inclination",
           "mud_density": "mud_density", "top_drive_inertia": "top_drive_inertia",
           "proportional_gain": "proportional_gain", "integral_gain": "integral_gain",
-          "damping_time": "damping_time"}
+          "damping_time": "damping_time", "torque_limit": "torque_limit", "top_drive": "top_drive"}
 
 
 #: The measured rule (C++ string/treatment.hpp): the treatment a string of so many wall contacts runs cheapest in.
@@ -92,7 +92,7 @@ def _keywords(engine) -> set:
 _EXTRA_KEYWORDS = {
     "StringRig": ("elements", "top_drive", "axial", "hoisting", "wall_contacts", "contact_nodes", "normal_forces",
                   "node_inclinations", "excitation_node", "bit", "weight_on_bit", "start_hanging"),
-    "TorsionalString": ("elements", "survey", "contact_radius", "bit", "slow_speed", "switch_tolerance"),
+    "TorsionalString": ("elements", "survey", "contact_radius", "bit", "top_drive", "slow_speed", "switch_tolerance"),
 }
 
 

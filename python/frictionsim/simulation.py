@@ -14,12 +14,14 @@ from . import _core
 from .errors import AccuracyWarning, InvalidParameterError, SimulationError
 from .result import Result
 
-__all__ = ["simulate", "METHODS", "LINEAR_SOLVERS", "SOLVER_DEFAULTS"]
+__all__ = ["simulate", "METHODS", "LINEAR_SOLVERS", "CONTACT_SOLVERS", "SOLVER_DEFAULTS"]
 
 #: Integrator names accepted by simulate(method=...): the engine's Method enum.
 METHODS = tuple(_core.Method.__members__)
 #: Linear solvers of CVODE BDF's Newton iteration accepted by simulate(linear_solver=...) (the engine's enum).
 LINEAR_SOLVERS = tuple(_core.LinearSolver.__members__)
+#: moreau_jean's one-step contact solvers accepted by simulate(contact_solver=...) (the engine's enum).
+CONTACT_SOLVERS = tuple(_core.ContactSolver.__members__)
 
 #: The methods that step a time-stepping model (TorsionalString) with a fixed step instead of locating events.
 TIME_STEPPING_METHODS = tuple(m for m in ("moreau_jean", "explicit_projection") if m in METHODS)
@@ -42,7 +44,7 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
              events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
              record_event_states: Optional[bool] = None, step: Optional[float] = None,
-             theta: Optional[float] = None) -> Result:
+             theta: Optional[float] = None, contact_solver: Optional[str] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
@@ -68,6 +70,10 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
         ``output_times``, and t_end - t_start a whole number of steps. Refused for the ODE methods.
     theta : float, optional
         Moreau-Jean's theta in [0.5, 1] (default 0.5: the linear part's energy kept; 1 damps it).
+    contact_solver : {"active_set", "projected_gauss_seidel"}, optional
+        The solver of each Moreau-Jean step's contact problem: the exact active set (the default) or projected
+        Gauss-Seidel sweeps (the same steps where the law is monotone, static == kinetic; slower). "moreau_jean"
+        only: refused for the other methods, naming it.
     linear_solver : {"automatic", "dense", "band", "sparse"}
         The linear solver of CVODE BDF's Newton iteration: "automatic" is band LU where the rig declares a banded
         Jacobian (a StringRig: its nodes couple only their neighbours), dense LU otherwise; "sparse" (KLU) only
@@ -156,6 +162,14 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
                                         f"({', '.join(TIME_STEPPING_METHODS)}), not of method {method!r} on a "
                                         f"{type(rig).__name__}", name)
         setattr(options, name, _real(name, value))
+    if contact_solver is not None:
+        if not time_stepping:
+            raise InvalidParameterError(f"contact_solver is an option of method 'moreau_jean', not of method "
+                                        f"{method!r} on a {type(rig).__name__}", "contact_solver")
+        if not isinstance(contact_solver, str) or contact_solver not in CONTACT_SOLVERS:
+            raise InvalidParameterError(f"contact_solver must be one of {', '.join(CONTACT_SOLVERS)} "
+                                        f"(got {contact_solver!r})", "contact_solver")
+        options.contact_solver = contact_solver  # explicit_projection refuses it in the engine, naming it
     started = time.time()
     try:
         raw = rig._simulate(_real("t_end", t_end), options, _real("t_start", t_start))

@@ -87,7 +87,7 @@ def test_a_mixed_case_with_the_bit_on_bottom_is_the_torsional_string_built_by_ha
 
 @pytest.mark.parametrize("old, new, key, words", [
     ('treatment = "captured"', 'treatment = "implicit"', "rig.treatment", "exact, captured, mixed"),
-    ("elements = 60", "elements = 60\ntorque_limit = 6e4", "rig.torque_limit", "treatment 'captured' cannot"),
+    ("elements = 60", "elements = 60\nend_mass = 1e3", "rig.end_mass", "treatment 'captured' cannot"),
     ("elements = 60", "elements = 60\ninitial_speed = 1.0", "rig.initial_speed", "treatment 'captured' cannot"),
     ('treatment = "captured"', 'treatment = "exact"', "rig.damping_rate", "treatment 'exact' cannot"),
     ('type = "coulomb"\nmu = 0.2\nmu_static = 0.3', 'type = "dahl"\nmu = 0.2\ntangential_stiffness = 1e4',
@@ -184,8 +184,8 @@ def test_one_string_model_builds_each_treatment_and_counts_stuck_walls_alike():
         assert stuck[0] == ds.wall_contacts(model) == len(model.contact_nodes)
         assert stuck[-1] == 0 and np.all((stuck >= 0) & (stuck <= ds.wall_contacts(model)))
     with pytest.raises(fs.InvalidParameterError) as error:
-        ds.string_model(string, walls, treatment="captured", torque_limit=1e4, **WELL)
-    assert error.value.parameter == "torque_limit"
+        ds.string_model(string, walls, treatment="captured", end_mass=1e3, **WELL)  # StringRig's axial BHA mass
+    assert error.value.parameter == "end_mass"
 
 
 def test_the_torsional_string_takes_the_one_survey_type():
