@@ -87,10 +87,7 @@ void register_laws(py::module_& m);
 void register_callable_law(py::module_& m);
 void register_results(py::module_& m);
 void register_contact(py::module_& m);
-/// fs.PipeSection, fs.DrillString, fs.NavarroLopezBit and the field-scale fs.StringRig (bindings/drillstring.cpp).
-py::object register_drillstring(py::module_& m);
-// The rigs of EngineRigs: register_rig<Entry> (bindings/rig_binding.hpp), read from the list by module.cpp.
-/// fs.TorsionalString and fs.aarsnes_shor_well_b (bindings/torsional_string.cpp); None without Eigen.
-py::object register_torsional_string(py::module_& m);
+// The rigs of EngineRigs, the string models too: register_rig<Entry> (bindings/rig_binding.hpp), read from the list
+// by module.cpp.
 
 }  // namespace frictionsim::python

@@ -20,13 +20,14 @@
 #include <frictionsim/string/treatment.hpp>
 
 #include "law_binding.hpp"
+#include "rig_binding.hpp"
 #include "simulation.hpp"
 
 namespace frictionsim::python {
 
 namespace {
 
-constexpr const char* rig_name = "StringRig";
+constexpr const char* rig_name = event_string_rig::name;
 constexpr auto section_fields = PipeSection::fields();
 constexpr auto rig_fields = StringRigParams::fields();
 constexpr auto detournay_fields = DetournayBit::fields;
@@ -434,7 +435,8 @@ Keywords
 
 }  // namespace
 
-py::object register_drillstring(py::module_& m) {
+template <>
+py::object register_rig<event_string_rig>(py::module_& m) {
     // the constructors read their keywords off the tables: their signatures are written from the tables too
     py::options options;
 
@@ -629,6 +631,7 @@ Keywords
     def_field_properties(cls, rig_fields, [](const BoundStringRig& r) -> const StringRigParams& { return r.params; });
     const std::string extras_signature =
         ", bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, "
+    def_outputs(cls, event_string_rig::outputs());
         "top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, "
         "contact_nodes: collections.abc.Sequence[int] | None = None, "
         "normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, "

@@ -49,6 +49,17 @@ void guard_construction(py::module_& m) {
     }
 }
 
+/// Whether the event_string_rig entry comes before every table-built entry of `Rigs` (see PYBIND11_MODULE).
+template <class... Entry>
+constexpr bool string_models_bound_before_table_rigs(frictionsim::TypeList<Entry...>) {
+    bool strings = false, ok = true;
+    ((Entry::construction == frictionsim::RigConstruction::string ? void(strings = true)
+      : Entry::construction == frictionsim::RigConstruction::table ? void(ok = ok && strings)
+                                                                    : void()),
+     ...);
+    return ok;
+}
+
 }  // namespace
 
 py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwargs, const char* factory) {
@@ -86,22 +97,15 @@ PYBIND11_MODULE(_core, m) {
     register_callable_law(m);
     register_results(m);
     register_contact(m);
-    // the rigs simulate() runs: every entry of EngineRigs (rigs/rigs.hpp) in its order, by register_rig, then the
-    // string models (bindings/drillstring.cpp, torsional_string.cpp). fs.StringRig's file also binds
-    // fs.NavarroLopezBit, the .bit of the rigs built from their table alone: it is bound before the first of them,
-    // so that their signatures name the Python class, not the C++ type.
+    // the rigs simulate() runs: every entry of EngineRigs (rigs/rigs.hpp) in its order, by register_rig (the string
+    // models' by their files, drillstring.cpp and torsional_string.cpp). fs.StringRig's file also binds
+    // fs.NavarroLopezBit, the .bit of the rigs built from their table alone: the list puts it before the first of
+    // them, so that their signatures name the Python class, not the C++ type.
+    static_assert(string_models_bound_before_table_rigs(frictionsim::EngineRigs{}),
+                  "EngineRigs: the event_string_rig entry (its file binds NavarroLopezBit) before table-built rigs");
     py::list rigs;
-    bool strings_bound = false;
-    for_each_type(frictionsim::EngineRigs{}, [&](auto tag) {
-        using Entry = typename decltype(tag)::type;
-        if (Entry::construction == frictionsim::RigConstruction::table && !strings_bound) {
-            rigs.append(register_drillstring(m));
-            strings_bound = true;
-        }
-        rigs.append(register_rig<Entry>(m));
-    });
-    if (!strings_bound) rigs.append(register_drillstring(m));
-    if (const py::object field = register_torsional_string(m); !field.is_none()) rigs.append(field);  // needs Eigen
+    for_each_type(frictionsim::EngineRigs{},
+                  [&](auto tag) { rigs.append(register_rig<typename decltype(tag)::type>(m)); });
     m.attr("RIGS") = py::tuple(rigs);
     register_wells(m);
     guard_construction(m);

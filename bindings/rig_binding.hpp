@@ -2,9 +2,10 @@
 // instantiation per law of a list (BoundRig) or, for a rig built from its table alone, as itself (BoundTableRig);
 // its docstring's Keywords section, one property per field and Rig.parameters, Rig.outputs (its columns' units,
 // from C++), friction (law rigs), state_names, _simulate, pickling and repr. def_table_init writes the constructor
-// from the table. register_rig<Entry> binds an entry of EngineRigs (rigs/rigs.hpp): from its table alone, or by the
-// specialisation of a rig with methods of its own (bindings/axial.cpp, torsional.cpp, kinematic.cpp,
-// navarro_lopez.cpp). The model is manif's wrap_lie_group_base.
+// from the table. register_rig<Entry> binds an entry of EngineRigs (rigs/rigs.hpp): from its table alone (its own
+// methods, if any, added by a specialisation of def_rig_methods: bindings/navarro_lopez.cpp), or by the
+// specialisation of a rig bound its own way (bindings/axial.cpp, torsional.cpp, kinematic.cpp; the string models:
+// drillstring.cpp, torsional_string.cpp). The model is manif's wrap_lie_group_base.
 #pragma once
 
 #include <pybind11/stl.h>
@@ -172,11 +173,20 @@ py::dict no_extras(const Bound&) {
     return py::dict();
 }
 
+/// A rig's own methods and properties beside what its table gives (closed forms, its parts), added to the class
+/// register_rig binds from the table: none, unless the rig's bindings file specialises this for its entry (declared
+/// below).
+template <class Entry, class Class>
+void def_rig_methods(Class&) {}
+
 /// Binds the rig of `Entry` (an entry of EngineRigs) and returns its class: by default from its table alone, its
-/// Params giving rig_name and description (a rig that needs nothing more is a header and a line in EngineRigs);
-/// a rig with methods of its own specialises this in its bindings file, declared below.
+/// Params giving rig_name and description (a rig that needs nothing more is a header and a line in EngineRigs),
+/// then def_rig_methods<Entry>; a rig bound its own way (extra keywords, signals, a DrillString) specialises this in
+/// its bindings file, declared below.
 template <class Entry>
 py::object register_rig(py::module_& m) {
+    static_assert(Entry::construction == RigConstruction::law || Entry::construction == RigConstruction::table,
+                  "register_rig: a signal-driven rig or a string model needs its own binding (declared below)");
     using P = typename Entry::Params;
     const std::string description = std::string("\n") + P::description + "\n\nKeywords\n--------\n";
     constexpr std::array<ExtraKeyword<P>, 0> extras{};
@@ -186,16 +196,20 @@ py::object register_rig(py::module_& m) {
         def_table_init(cls, Entry::name, P::fields(), extras, [](py::handle friction, const P& p) {
             return Bound(friction_law_from_python(friction, "friction"), p);
         });
+        def_rig_methods<Entry>(cls);
         return std::move(cls);
     } else {
-        static_assert(Entry::construction == RigConstruction::table,
-                      "register_rig: a signal-driven rig needs its own binding (bindings/kinematic.cpp)");
         using Bound = BoundTableRig<typename Entry::type, P>;
         auto cls = bind_rig<Bound>(m, Entry::name, description, P::fields(), NoLaw{}, no_extras<Bound>);
         def_table_init(cls, Entry::name, P::fields(), extras, [](const P& p) { return Bound(p); });
+        def_rig_methods<Entry>(cls);
         return std::move(cls);
     }
 }
+
+/// The class register_rig binds for a table-built entry (what def_rig_methods<Entry> is given).
+template <class Entry>
+using TableRigClass = py::class_<BoundTableRig<typename Entry::type, typename Entry::Params>>;
 
 template <>
 py::object register_rig<law_rig<AxialRig, AxialRigParams>>(py::module_& m);  // bindings/axial.cpp
@@ -203,9 +217,21 @@ template <>
 py::object register_rig<signal_rig>(py::module_& m);  // bindings/kinematic.cpp
 template <>
 py::object register_rig<law_rig<TorsionalRig, TorsionalRigParams>>(py::module_& m);  // bindings/torsional.cpp
+/// fs.StringRig, with fs.PipeSection, fs.DrillString, fs.NavarroLopezBit, fs.DetournayBit and
+/// fs.automatic_treatment (bindings/drillstring.cpp).
 template <>
-py::object register_rig<table_rig<NavarroLopez2Dof, NavarroLopez2DofParams>>(py::module_& m);  // navarro_lopez.cpp
+py::object register_rig<event_string_rig>(py::module_& m);
+#if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
+/// fs.TorsionalString, with fs.aarsnes_shor_well_b (bindings/torsional_string.cpp).
 template <>
-py::object register_rig<table_rig<NavarroLopez4Dof, NavarroLopez4DofParams>>(py::module_& m);  // navarro_lopez.cpp
+py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams>>(py::module_& m);
+#endif
+// the Navarro-Lopez strings: bound from their tables by register_rig, their own methods in navarro_lopez.cpp
+template <>
+void def_rig_methods<table_rig<NavarroLopez2Dof, NavarroLopez2DofParams>>(
+    TableRigClass<table_rig<NavarroLopez2Dof, NavarroLopez2DofParams>>& cls);
+template <>
+void def_rig_methods<table_rig<NavarroLopez4Dof, NavarroLopez4DofParams>>(
+    TableRigClass<table_rig<NavarroLopez4Dof, NavarroLopez4DofParams>>& cls);
 
 }  // namespace frictionsim::python

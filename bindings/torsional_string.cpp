@@ -1,7 +1,8 @@
 // The Aarsnes-Shor torsional string for Python (include/frictionsim/string/torsional_string.hpp): fs.TorsionalString,
 // a lumped string whose hundreds of wall contacts are captured by Moreau-Jean time-stepping (no event per switch),
 // the bit on bottom captured with them or its switches located exactly ("mixed"); the closed forms of A&S sec. 4;
-// the Well B preset fs.aarsnes_shor_well_b. Needs Eigen (FRICTIONSIM_EIGEN): without it nothing is registered.
+// the Well B preset fs.aarsnes_shor_well_b. Its entry of EngineRigs (time_stepping_rig) and this binding need Eigen
+// (FRICTIONSIM_EIGEN): without it the list has no such entry and nothing is registered.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -309,11 +310,13 @@ Keywords
 
 }  // namespace
 
-py::object register_torsional_string(py::module_& m) {
+template <>
+py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams>>(py::module_& m) {
     py::class_<BoundTorsionalString> cls(m, name, kept(std::string(description) + keywords_doc(fields)));
     def_field_properties(cls, fields, [](const BoundTorsionalString& r) -> const TorsionalStringParams& {
         return r.params;
     });
+    def_outputs(cls, TorsionalStringParams::outputs());
     const TorsionalStringParams defaults{};
     std::string signature = "__init__(self, string: DrillString, *";
     for (const Field<TorsionalStringParams>& f : fields)
@@ -458,10 +461,6 @@ analytic 19.531 kN m; "as_code" weighs the collar 67/61 times heavier, hence mor
 )doc");
     return std::move(cls);
 }
-
-#else
-
-py::object register_torsional_string(py::module_&) { return py::none(); }
 
 #endif
 

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -56,6 +57,62 @@ void check_outputs() {
     CHECK((unit == "N" || unit == "N m"));
 }
 
+/// Whether `outputs` declares the column `name`: by its name, or as a state per node (a row stem_* for stem_<i>).
+template <class Outputs>
+bool declares(const Outputs& outputs, const std::string& name) {
+    for (const RigOutput& o : outputs) {
+        const std::string row = o.name;
+        if (row == name) return true;
+        if (row.size() > 2 && row.compare(row.size() - 2, 2, "_*") == 0) {
+            const std::string stem = row.substr(0, row.size() - 1);  // "theta_"
+            if (name.size() > stem.size() && name.compare(0, stem.size(), stem) == 0 &&
+                name.find_first_not_of("0123456789", stem.size()) == std::string::npos)
+                return true;
+        }
+    }
+    return false;
+}
+
+/// A string model's outputs: friction_force first (a torque), each row once with a unit and a meaning, and a mode
+/// row of unit "1" (the mode column counts contacts at rest); every state of `runs` (set-ups of the model that
+/// name all its states between them) declared, and every row but friction_force and mode some state's.
+template <class Entry>
+void check_string_outputs(const std::vector<std::vector<std::string>>& runs) {
+    INFO(Entry::name);
+    const auto outputs = Entry::outputs();
+    CHECK(std::string(outputs[0].name) == "friction_force");
+    CHECK(std::string(outputs[0].unit) == "N m");
+    std::set<std::string> rows, used;
+    for (const RigOutput& o : outputs) {
+        CHECK(std::string(o.unit) != "");
+        CHECK(std::string(o.what) != "");
+        CHECK(rows.insert(o.name).second);
+        if (std::string(o.name) == "mode") CHECK(std::string(o.unit) == "1");
+    }
+    CHECK(rows.count("mode") == 1);
+    for (const std::vector<std::string>& names : runs)
+        for (const std::string& n : names) {
+            INFO(n);
+            CHECK(declares(outputs, n));
+            for (const RigOutput& o : outputs)
+                if (declares(std::array<RigOutput, 1>{o}, n)) used.insert(o.name);
+        }
+    used.insert("friction_force");
+    used.insert("mode");
+    CHECK(used == rows);
+}
+
+DrillString one_pipe(double length) {
+    PipeSection s;
+    s.length = length;
+    return DrillString({s});
+}
+
+template <class Names>
+std::vector<std::string> strings_of(const Names& names) {
+    return std::vector<std::string>(names.begin(), names.end());
+}
+
 /// The closed-form stick-slip period of a block on a belt with Coulomb friction (mu_k < mu_s, no damping): it
 /// sticks from x = 2 x_k - x_s to x_s = mu_s N / k at the belt's speed, then slips as a harmonic oscillator about
 /// x_k = mu_k N / k (w = sqrt(k / m)) until x' = v_b again: T = 2 (x_s - x_k) / v_b + (2 pi - 2 phi) / w,
@@ -70,19 +127,50 @@ double belt_period(const test::BeltRigParams& p, double mu_k, double mu_s) {
 }  // namespace
 
 TEST_CASE("every rig of EngineRigs declares its outputs' units, one per state and friction_force", "[rigs]") {
-    STATIC_REQUIRE(EngineRigs::size == 5);
+    STATIC_REQUIRE(EngineRigs::size == 7);
     STATIC_REQUIRE(count_rigs<RigConstruction::law>(EngineRigs{}) == 2);
     STATIC_REQUIRE(count_rigs<RigConstruction::table>(EngineRigs{}) == 2);
+    STATIC_REQUIRE(count_rigs<RigConstruction::string>(EngineRigs{}) == 1);
+    STATIC_REQUIRE(count_rigs<RigConstruction::time_stepping>(EngineRigs{}) == 1);
     std::vector<std::string> names;
     for_each_type(EngineRigs{}, [&](auto tag) {
         using Entry = typename decltype(tag)::type;
-        check_outputs<Entry>();
+        if constexpr (Entry::construction != RigConstruction::string &&
+                      Entry::construction != RigConstruction::time_stepping)
+            check_outputs<Entry>();  // the string models: the next case
         names.emplace_back(Entry::name);
     });
-    CHECK(names == std::vector<std::string>{"AxialVibrationRig", "KinematicRig", "TorsionalRig", "NavarroLopez2Dof",
-                                            "NavarroLopez4Dof"});
+    CHECK(names == std::vector<std::string>{"AxialVibrationRig", "KinematicRig", "TorsionalRig", "StringRig",
+                                            "NavarroLopez2Dof", "NavarroLopez4Dof", "TorsionalString"});
     CHECK(std::string(AxialRigParams::outputs()[0].unit) == "N");
     CHECK(std::string(NavarroLopez4DofParams::outputs()[0].unit) == "N m");
+}
+
+TEST_CASE("the string models of EngineRigs declare their outputs: per node, work integrals, counted mode", "[rigs]") {
+    const DrillString string = one_pipe(300.0);
+    // StringRig: torsion under the PI drive off bottom, and axial under a prescribed speed with the bit on bottom:
+    // between them every state a Coulomb-walled string has (a wall law's own states come from the law)
+    for_each_rig<RigConstruction::string>(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        StringRigSetup torsion;
+        torsion.elements = 3;
+        StringRigSetup axial = torsion;
+        axial.axial = true;
+        axial.top_drive = TopDrive::prescribed_speed;
+        const typename Entry::template of<Coulomb> off_bottom(string, StringRigParams{}, torsion, Coulomb(0.3));
+        const typename Entry::template of<Coulomb, VelocityWeakeningBit> on_bottom(
+            string, StringRigParams{}, axial, Coulomb(0.3), VelocityWeakeningBit(NavarroLopezBit(), 2e4));
+        const std::vector<std::string> a = off_bottom.state_names(), b = on_bottom.state_names();
+        CHECK(std::find(a.begin(), a.end(), "speed_error_integral") != a.end());
+        CHECK(std::find(b.begin(), b.end(), "u_3") != b.end());
+        check_string_outputs<Entry>({a, b});
+    });
+    // TorsionalString: its four columns
+    for_each_rig<RigConstruction::time_stepping>(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        const typename Entry::type model(string, typename Entry::Params{}, 5);
+        check_string_outputs<Entry>({strings_of(model.state_names())});
+    });
 }
 
 TEST_CASE("a toy rig added to a list of rigs runs through the list's generic code at its closed-form period",

@@ -5,9 +5,9 @@ A friction law declares its states' units in C++ next to their names (``Law::sta
 attribute ``state_units`` beside ``state_names``), so a new law needs no entry here. A rig of the engine's list
 declares its outputs in C++ next to its parameter table (``Params::outputs()``, bound as the class attribute
 ``outputs``: ``(name, unit, what)`` for ``friction_force``, a force [N] or a torque [N m], and each of its own
-states), so a new rig needs no entry here either. The string models (``StringRig``, ``TorsionalString``) do not
-declare theirs in C++ yet: their entries below also give the states they have per node (``theta_3``) and what
-their ``mode`` column counts.
+states), so a new rig needs no entry here either. The string models (``StringRig``, ``TorsionalString``) declare
+theirs so too, with the states they have per node (a row ``theta_*`` for ``theta_0``, ``theta_1``, ...) and what
+their ``mode`` column counts (a row ``mode`` of unit "1": the stuck wall contacts).
 """
 
 from __future__ import annotations
@@ -16,12 +16,6 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, Mapping, Optional
 
 from . import _core
-from ._core import StringRig
-
-try:
-    from ._core import TorsionalString  # needs Eigen (HAS_EIGEN)
-except ImportError:  # pragma: no cover - an extension built without Eigen
-    TorsionalString = None
 
 __all__ = ["RIG_OUTPUTS", "RigOutputs", "declared_outputs", "law_state_units", "output_units", "rig_outputs"]
 
@@ -44,9 +38,6 @@ class RigOutputs:
         return self.friction == "N m"
 
 
-_WORK = "J"
-_STRING = dict(theta="rad", omega="rad/s", u="m", v="m/s")
-
 def declared_outputs(cls: type) -> Optional[RigOutputs]:
     """What a rig class declares in C++ (its ``outputs``: ``(name, unit, what)`` rows, ``friction_force`` among
     them), or None for a class that declares none. A row ``name_*`` is a state per node (``theta_*``: ``theta_0``,
@@ -61,20 +52,10 @@ def declared_outputs(cls: type) -> Optional[RigOutputs]:
     return RigOutputs(friction, units, nodes, mode)
 
 
-#: The string models' outputs, until they declare them in C++ as the rigs of the engine's list do.
-_STRING_MODELS: Dict[Any, RigOutputs] = {
-    StringRig: RigOutputs("N m", {
-        "speed_error_integral": "rad", "drive_work": _WORK, "hoist_work": _WORK, "excitation_work": _WORK,
-        "wall_friction_work": _WORK, "damping_work": _WORK, "bit_work": _WORK}, _STRING, "stuck contacts"),
-    TorsionalString: RigOutputs("N m", {
-        "bit_speed": "rad/s", "top_drive_speed": "rad/s", "motor_torque": "N m", "stuck_fraction": "1"}),
-}
-
-#: Every rig the engine binds, by its class (``frictionsim.RIGS``): each declares its outputs in C++ (``outputs``),
-#: the string models apart (tests/python/test_io.py checks that each rig has an entry).
+#: Every rig the engine binds, by its class (``frictionsim.RIGS``), as each declares its outputs in C++
+#: (``outputs``; tests/python/test_io.py checks that each rig has an entry).
 RIG_OUTPUTS: Dict[type, RigOutputs] = {
-    cls: outputs for cls, outputs in (
-        (cls, declared_outputs(cls) or _STRING_MODELS.get(cls)) for cls in _core.RIGS) if outputs is not None
+    cls: outputs for cls, outputs in ((cls, declared_outputs(cls)) for cls in _core.RIGS) if outputs is not None
 }
 
 

@@ -1,8 +1,10 @@
 // Fuzz target (issue 11): bytes -> a friction law, a rig and solver options -> construct and run a short
-// simulation; a first byte 0xFF draws a field model instead (issue 22): the Aarsnes-Shor TorsionalString with its
-// treatment (captured / exact bit, on or off bottom) and a time-stepping method, or a rig of EngineRigs built from
-// its table alone (the Navarro-Lopez strings). Every rig drawn is an entry of EngineRigs (rigs/rigs.hpp), so a rig
-// added there is fuzzed. Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a
+// simulation; a first byte 0xFF draws a field model instead (issue 22): the time-stepping string of EngineRigs (the
+// Aarsnes-Shor TorsionalString) with its treatment (captured / exact bit, on or off bottom) and a time-stepping
+// method, or a rig of EngineRigs built from its table alone (the Navarro-Lopez strings); a first byte 0xFE the
+// event-driven string of EngineRigs (StringRig: a wall law, its set-up, off bottom or a bit on bottom). Every rig
+// drawn is an entry of EngineRigs (rigs/rigs.hpp), by kind, so a rig added there is fuzzed; the byte layout of the
+// committed seeds (tests/fuzz/corpus) is kept (no seed before 0xFE's branch began with 0xFE). Every input must end in one of: InvalidParameter (bad input, named), SimulationError (a
 // stop with its time and partial result), or a completed Result whose every value is finite. Anything else (a crash, a
 // sanitizer report, another exception, a "completed" run with NaN) aborts, so libFuzzer reports it.
 //
@@ -112,9 +114,54 @@ Law law_from(Bytes& in) {
     return Law(params_from<typename Law::Params>(Law::fields, in));
 }
 
-/// A time-stepping model: a small TorsionalString (1-16 elements, sections and parameters from their tables), the
-/// bit's treatment, Moreau-Jean or the explicit projection with a drawn step; or a Navarro-Lopez rig on an ODE method.
+/// 1-2 pipe sections from their table.
+DrillString string_from(Bytes& in) {
+    std::vector<PipeSection> sections(1 + in.byte() % 2);
+    for (PipeSection& s : sections) s = params_from<PipeSection>(PipeSection::fields(), in);
+    return DrillString(sections);
+}
+
+/// The event-driven string of EngineRigs with `law` on its walls: 1-2 sections, its table, a small set-up (1-8
+/// elements, PI or prescribed drive, torsion or also axial with either hoisting, wall contacts or none), off bottom
+/// or on bottom with the velocity-weakening or the Detournay bit (tables and weight drawn), on an ODE method.
+template <class Law>
+void run_string(const Law& law, Bytes& in) {
+    static_assert(count_rigs<RigConstruction::string>(EngineRigs{}) == 1,
+                  "the byte layout draws one event-driven string: give a second its own byte");
+    for_each_rig<RigConstruction::string>(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        const DrillString string = string_from(in);
+        const auto p = params_from<typename Entry::Params>(Entry::Params::fields(), in);
+        StringRigSetup setup;
+        setup.elements = 1 + in.byte() % 8;
+        const std::uint8_t flags = in.byte();
+        setup.top_drive = flags & 1 ? TopDrive::prescribed_speed : TopDrive::pi_motor;
+        setup.axial = (flags & 2) != 0;
+        setup.hoisting = flags & 4 ? Hoisting::hook_load : Hoisting::hook_speed;
+        setup.wall_contacts = (flags & 8) == 0;
+        const SolverOptions o = options(in);
+        const double t_end = in.byte() & 1 ? in.number() : 0.05;
+        const std::uint8_t bit = in.byte() % 3;
+        if (bit == 0) {
+            require_finite(simulate(typename Entry::template of<Law>(string, p, setup, law), t_end, o));
+        } else if (bit == 1) {
+            const NavarroLopezBit b(params_from<NavarroLopezBit::Params>(NavarroLopezBit::fields, in));
+            using Rig = typename Entry::template of<Law, VelocityWeakeningBit>;
+            require_finite(simulate(Rig(string, p, setup, law, VelocityWeakeningBit(b, in.number())), t_end, o));
+        } else {
+            const DetournayBit b(params_from<DetournayBit::Params>(DetournayBit::fields, in));
+            using Rig = typename Entry::template of<Law, DetournayBitOnRock>;
+            require_finite(simulate(Rig(string, p, setup, law, DetournayBitOnRock(b, in.number())), t_end, o));
+        }
+    });
+}
+
+/// A time-stepping model of EngineRigs: a small TorsionalString (1-16 elements, sections and parameters from their
+/// tables), the bit's treatment, Moreau-Jean or the explicit projection with a drawn step; or a rig of EngineRigs
+/// built from its table alone (a Navarro-Lopez string) on an ODE method.
 void run_field(Bytes& in) {
+    static_assert(count_rigs<RigConstruction::time_stepping>(EngineRigs{}) == 1,
+                  "the byte layout draws one time-stepping model: give a second its own byte");
     constexpr std::size_t table_rigs = count_rigs<RigConstruction::table>(EngineRigs{});
     const std::size_t which = in.byte() % (table_rigs + 1);
     if (which > 0) {  // a rig of EngineRigs built from its table alone (the Navarro-Lopez strings)
@@ -129,31 +176,39 @@ void run_field(Bytes& in) {
         });
         return;
     }
-    std::vector<PipeSection> sections(1 + in.byte() % 2);
-    for (PipeSection& s : sections) s = params_from<PipeSection>(PipeSection::fields(), in);
-    const auto p = params_from<TorsionalStringParams>(TorsionalStringParams::fields(), in);
-    const std::size_t elements = 1 + in.byte() % 16;
-    TorsionalString model(DrillString(sections), p, elements);
-    model.set_bit_treatment(in.byte() & 1 ? BitTreatment::exact : BitTreatment::captured);
-    SolverOptions o;
-    o.method = in.byte() & 1 ? Method::explicit_projection : Method::moreau_jean;
-    o.step = in.byte() & 1 ? in.number() : 1e-3;
-    if (in.byte() & 1) o.theta = in.number();
-    o.max_steps = 20000;
-    o.max_output_rows = 5000;
-    o.timeout = 2.0;
-    const double t_end = in.byte() & 1 ? in.number() : 0.05;
-    require_finite(simulate(model, t_end, o));
+    for_each_rig<RigConstruction::time_stepping>(EngineRigs{}, [&](auto tag) {
+        using Entry = typename decltype(tag)::type;
+        const DrillString string = string_from(in);
+        const auto p = params_from<typename Entry::Params>(Entry::Params::fields(), in);
+        const std::size_t elements = 1 + in.byte() % 16;
+        typename Entry::type model(string, p, elements);
+        model.set_bit_treatment(in.byte() & 1 ? BitTreatment::exact : BitTreatment::captured);
+        SolverOptions o;
+        o.method = in.byte() & 1 ? Method::explicit_projection : Method::moreau_jean;
+        o.step = in.byte() & 1 ? in.number() : 1e-3;
+        if (in.byte() & 1) o.theta = in.number();
+        o.max_steps = 20000;
+        o.max_output_rows = 5000;
+        o.timeout = 2.0;
+        const double t_end = in.byte() & 1 ? in.number() : 0.05;
+        require_finite(simulate(model, t_end, o));
+    });
+}
+
+/// A law of the engine's list from the bytes, then `f(law)`.
+template <class F>
+void with_law(Bytes& in, std::size_t which, F&& f) {
+    std::size_t i = 0;
+    for_each_type(EngineLaws{}, [&](auto tag) {
+        if (i++ == which) f(law_from<typename decltype(tag)::type>(in));
+    });
 }
 
 void run(Bytes& in) {
     const std::uint8_t first = in.byte();
     if (first == 0xFF) return run_field(in);
-    const std::size_t which = first % EngineLaws::size;
-    std::size_t i = 0;
-    for_each_type(EngineLaws{}, [&](auto tag) {
-        if (i++ == which) run_rigs(law_from<typename decltype(tag)::type>(in), in);
-    });
+    if (first == 0xFE) return with_law(in, in.byte() % EngineLaws::size, [&](const auto& law) { run_string(law, in); });
+    with_law(in, first % EngineLaws::size, [&](const auto& law) { run_rigs(law, in); });
 }
 
 }  // namespace

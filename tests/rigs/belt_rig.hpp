@@ -14,7 +14,7 @@
 #include <frictionsim/contact/switching.hpp>
 #include <frictionsim/detail/validate.hpp>
 #include <frictionsim/parameters.hpp>
-#include <frictionsim/rigs/outputs.hpp>
+#include <frictionsim/outputs.hpp>
 
 namespace frictionsim::test {
 

@@ -21,7 +21,7 @@
 #include "../parameters.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../contact/switching.hpp"
-#include "outputs.hpp"
+#include "../outputs.hpp"
 
 namespace frictionsim {
 

@@ -30,7 +30,7 @@
 #include "../detail/validate.hpp"
 #include "../solve/hybrid_system.hpp"
 #include "../contact/switching.hpp"
-#include "outputs.hpp"
+#include "../outputs.hpp"
 #include "signals.hpp"
 
 namespace frictionsim {

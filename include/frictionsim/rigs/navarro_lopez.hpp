@@ -46,9 +46,31 @@
 #include "../friction/law.hpp"
 #include "../parameters.hpp"
 #include "../contact/lcp.hpp"
-#include "outputs.hpp"
+#include "../outputs.hpp"
 
 namespace frictionsim {
+
+// The strings' common description (their help() in Python, through Params::description), one literal for both.
+#define FRICTIONSIM_NAVARRO_LOPEZ_DOC \
+    "A constant motor torque u drives the rotary table (viscous loss " \
+    "c_r); springs k and dampers d join the inertias;\n" \
+    "the bit (last inertia) carries the velocity-weakening friction of " \
+    "NavarroLopezBit with stick, under weight on bit W:\n" \
+    "\n" \
+    "    J_i w_i' = [i = 0] (u - c_r w_0) + S_{i-1} - S_i - T_i,   S_i " \
+    "= k_i (phi_i - phi_{i+1}) + d_i (w_i - w_{i+1})\n" \
+    "    T_b = c_b w_b + R_b W mu_b(w_b) sign(w_b),  mu_b = mu_cb + " \
+    "(mu_sb - mu_cb) exp(-gamma_b |w_b| / v_f)   (slip)\n" \
+    "    |T_b| <= R_b W mu_sb                                                                           (stick)\n" \
+    "\n" \
+    "Steady states (closed forms): while the bit turns every inertia runs at the root w of steady_balance(w) = 0,\n" \
+    "u - (c_r + c_b) w - R_b W mu_b(w) = 0; at rest the bit holds while " \
+    "W >= stuck_weight_threshold = u / (R_b mu_sb).\n" \
+    "Switches are located as events (exact stick, or a Karnopp band " \
+    "D_v). States: each inertia's speed [rad/s], each\n" \
+    "spring's twist [rad], and motor_work = stored energy change + damping_work + friction_work [J]. The Result's\n" \
+    "friction_force is the bit's torque T_b [N m]; the mode is 0 while " \
+    "everything turns forwards, 1 while the bit sticks.\n"
 
 /// 2-DOF string: rotary table and bit (Navarro-Lopez & Suarez 2004). The operating point u = 6 kN m, W = 30 kN is
 /// illustrative (the papers sweep both).
@@ -71,6 +93,10 @@ struct NavarroLopez2DofParams {
     double initial_speed = 0.0;             ///< every inertia's speed at t = 0, rad/s (springs untwisted)
 
     static constexpr const char* rig_name = "NavarroLopez2Dof";  ///< as Python and the rig list name it
+    static constexpr const char* description =
+        "The 2-DOF drill string of Navarro-Lopez & Suarez (2004), reused by Navarro-Lopez & Cortes (2007): rotary "
+        "table and bit.\n\n" FRICTIONSIM_NAVARRO_LOPEZ_DOC
+        "\nDefaults: the papers' parameter set at u = 6 kN m, W = 30 kN (illustrative).";
     static constexpr std::array<Field<NavarroLopez2DofParams>, 15> fields();
     /// The Result's columns beside t (NavarroLopezRig::state_names; the bit law has no states).
     static constexpr std::array<RigOutput, 7> outputs() {
@@ -113,6 +139,11 @@ struct NavarroLopez4DofParams {
     double initial_speed = 0.0;             ///< rad/s
 
     static constexpr const char* rig_name = "NavarroLopez4Dof";  ///< as Python and the rig list name it
+    static constexpr const char* description =
+        "The 4-DOF drill string of Navarro-Lopez & Cortes (2007): rotary table, two pipe inertias, bit. With "
+        "pipe_wall_torque > 0 each pipe inertia also rubs the wellbore (Coulomb, with stick): the balance subtracts "
+        "2 T_p.\n\n" FRICTIONSIM_NAVARRO_LOPEZ_DOC
+        "\nDefaults: the parameter set of the public code of Navarro-Lopez & Cortes' model.";
     static constexpr std::array<Field<NavarroLopez4DofParams>, 22> fields();
     /// The Result's columns beside t (NavarroLopezRig::state_names; the bit law has no states).
     static constexpr std::array<RigOutput, 11> outputs() {
@@ -131,6 +162,8 @@ struct NavarroLopez4DofParams {
         }};
     }
 };
+
+#undef FRICTIONSIM_NAVARRO_LOPEZ_DOC
 
 namespace detail {
 /// Fields shared by both strings' tables (after each string's own): the bit law's, the operating point's, the initial speed.

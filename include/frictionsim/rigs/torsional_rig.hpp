@@ -43,7 +43,7 @@
 #include "../detail/validate.hpp"
 #include "../parameters.hpp"
 #include "../contact/disc_contact.hpp"
-#include "outputs.hpp"
+#include "../outputs.hpp"
 
 namespace frictionsim {
 

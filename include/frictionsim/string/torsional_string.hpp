@@ -53,6 +53,7 @@
 #include <Eigen/SparseCore>
 
 #include "../detail/constants.hpp"
+#include "../outputs.hpp"
 #include "../parameters.hpp"
 #include "../survey.hpp"
 #include "../eigen/moreau_jean.hpp"
@@ -85,6 +86,19 @@ struct TorsionalStringParams {
     double torque_limit = 0.0;                   ///< T_max, N m: |tau_m| <= T_max, anti-windup; 0: no limit
 
     static constexpr std::array<Field<TorsionalStringParams>, 18> fields();
+    static constexpr const char* rig_name = "TorsionalString";  ///< as Python and the rig list name it
+    /// The Result's columns beside t (TorsionalString::state_names). The mode column counts the wall contacts at
+    /// rest, as StringRig's does; the bit's own stick and slip are in the events.
+    static constexpr std::array<RigOutput, 6> outputs() {
+        return {{
+            {"friction_force", "N m", "node N's contact torque (the bit's with its wall's) over the step"},
+            {"bit_speed", "rad/s", "speed of node N, the bit"},
+            {"top_drive_speed", "rad/s", "speed of node 0, the top drive"},
+            {"motor_torque", "N m", "the PI motor's torque tau_m"},
+            {"stuck_fraction", "1", "share of the nodes at rest (|omega| < slow_speed where set)"},
+            {"mode", "1", "wall contacts at rest (a count out of contact_count())"},
+        }};
+    }
 };
 
 inline constexpr std::array<Field<TorsionalStringParams>, 18> TorsionalStringParams::fields() {

@@ -1,5 +1,6 @@
-// What a rig's Result holds beside t and its friction law's states (whose units the law gives, Law::state_units):
-// each column's name, SI unit and meaning, declared once next to the rig's parameter table. The Python package
+// What a model's Result holds beside t and its friction law's states (whose units the law gives, Law::state_units):
+// each column's name, SI unit and meaning, declared once next to the model's parameter table (the lab rigs of rigs/
+// and the string models of string/ alike, so it sits on the floor of parameters.hpp, below both). The Python package
 // reads it (Rig.outputs) for units in files and on plot axes; nothing looks a unit up by class or state name.
 #pragma once
 
