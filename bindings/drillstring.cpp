@@ -629,9 +629,9 @@ Keywords
     // ---- StringRig
     py::class_<BoundStringRig> cls(m, rig_name, kept(rig_description + keywords_doc(rig_fields)));
     def_field_properties(cls, rig_fields, [](const BoundStringRig& r) -> const StringRigParams& { return r.params; });
+    def_outputs(cls, event_string_rig::outputs());
     const std::string extras_signature =
         ", bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, "
-    def_outputs(cls, event_string_rig::outputs());
         "top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, "
         "contact_nodes: collections.abc.Sequence[int] | None = None, "
         "normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, "

@@ -77,7 +77,9 @@ SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elem
           "bit": "bit", "weight_on_bit": "weight_on_bit", "inclination": "inclination",
           "mud_density": "mud_density", "top_drive_inertia": "top_drive_inertia",
           "proportional_gain": "proportional_gain", "integral_gain": "integral_gain",
-          "damping_time": "damping_time", "torque_limit": "torque_limit", "top_drive": "top_drive"}
+          "damping_time": "damping_time", "damping_rate": "damping_rate",
+          "setpoint_time_constant": "setpoint_time_constant", "torque_limit": "torque_limit",
+          "top_drive": "top_drive"}
 
 
 #: The measured rule (C++ string/treatment.hpp): the treatment a string of so many wall contacts runs cheapest in.

@@ -33,12 +33,12 @@ class Param:
 
 
 #: Typical values of terms that the engine's example leaves off (0) but the runs should exercise: viscous terms
-#: [N s/m], and a string rig's hole inclination [rad], structural damping [s] and BHA [kg m^2, kg]. Every other
-#: term that is off by default (a Karnopp band, which the kinematic rig refuses; a string's hoisting and excitation)
-#: is drawn off.
+#: [N s/m], and a string rig's hole inclination [rad], structural damping [s], BHA [kg m^2, kg], A&S's viscous
+#: damping k_t [1/s] and set-point ramp [s]. Every other term that is off by default (a Karnopp band, which the
+#: kinematic rig refuses; a string's hoisting and excitation) is drawn off.
 _TYPICAL_WHEN_OFF = {"viscous_coefficient": (1e-3, 10.0), "viscous_damping": (1e-3, 10.0),
                      "inclination": (0.05, 1.5), "damping_time": (1e-4, 1e-2), "end_inertia": (1.0, 100.0),
-                     "end_mass": (1e3, 3e4)}
+                     "end_mass": (1e3, 3e4), "damping_rate": (1e-3, 0.5), "setpoint_time_constant": (0.05, 2.0)}
 
 
 def _typical(record: Any, base: Any) -> Tuple[float, float]:

@@ -267,14 +267,16 @@ def test_keywords_properties_repr_and_pickle_round_trip():
     bit = fs.NavarroLopezBit(static_coefficient=0.9, viscous_damping=10.0)
     rig = fs.StringRig(string, fs.Dahl(mu=0.25, tangential_stiffness=1e5), bit=bit, weight_on_bit=5e4,
                        elements=8, top_drive="prescribed_speed", contact_nodes=[2, 4, 6],
-                       normal_forces=[1e3, 2e3, 3e3], damping_time=1e-3, surface_speed=3.0, inclination=0.7)
+                       normal_forces=[1e3, 2e3, 3e3], damping_time=1e-3, surface_speed=3.0, inclination=0.7,
+                       damping_rate=0.02, setpoint_time_constant=0.5)
+    assert rig.damping_rate == 0.02 and rig.setpoint_time_constant == 0.5  # A&S's k_t and set-point ramp
     assert rig.elements == 8 and rig.top_drive == "prescribed_speed" and not rig.axial and rig.on_bottom
     assert rig.contact_nodes == [2, 4, 6] and list(rig.normal_forces) == [1e3, 2e3, 3e3]
     assert rig.damping_time == 1e-3 and rig.surface_speed == 3.0 and rig.inclination == 0.7
     assert not hasattr(rig, "bit_radius")  # the bit's table stays on the bit
     assert rig.bit.static_coefficient == 0.9 and rig.weight_on_bit == 5e4 and rig.period is None
     plain = fs.StringRig(string, fs.Coulomb(0.3))
-    assert len(fs.StringRig.parameters) == 17
+    assert len(fs.StringRig.parameters) == 19
     for p in fs.StringRig.parameters:  # every table field: a keyword with its default, a property, documented
         assert getattr(plain, p.name) == p.default and f"{p.name} : float = " in fs.StringRig.__doc__
     # the radius of a node on the pipe / collar boundary is the collar's

@@ -89,7 +89,8 @@ def test_a_mixed_case_with_the_bit_on_bottom_is_the_torsional_string_built_by_ha
     ('treatment = "captured"', 'treatment = "implicit"', "rig.treatment", "exact, captured, mixed"),
     ("elements = 60", "elements = 60\nend_mass = 1e3", "rig.end_mass", "treatment 'captured' cannot"),
     ("elements = 60", "elements = 60\ninitial_speed = 1.0", "rig.initial_speed", "treatment 'captured' cannot"),
-    ('treatment = "captured"', 'treatment = "exact"', "rig.damping_rate", "treatment 'exact' cannot"),
+    ('treatment = "captured"', 'treatment = "exact"\nstick_band_speed = 1.5', "rig.stick_band_speed",
+     "treatment 'exact' cannot"),
     ('type = "coulomb"\nmu = 0.2\nmu_static = 0.3', 'type = "dahl"\nmu = 0.2\ntangential_stiffness = 1e4',
      "friction.type", "coulomb under treatment captured"),
     ("step = 2e-3", 'step = 2e-3\nmethod = "dormand_prince"', "solver.method", "treatment 'captured'"),
@@ -188,6 +189,31 @@ def test_one_string_model_builds_each_treatment_and_counts_stuck_walls_alike():
     assert error.value.parameter == "end_mass"
 
 
+def test_the_exact_treatment_takes_k_t_and_the_set_point_ramp():
+    """damping_rate (A&S's k_t: k_t J_s,i w_i at each node, J_s,i its string inertia) and setpoint_time_constant
+    (w_set (1 - exp(-t / T))) are StringRig keywords too: string_model carries them to either treatment. A
+    prescribed ramped speed turns the top as the closed form, and once the ramp is over (and the string's torsional
+    oscillation damped by its elements' dampers) it holds the string's whole k_t torque, k_t J_string w_set (no
+    walls: every node turns at w_set)."""
+    string, walls = fs.DrillString([fs.PipeSection(length=1000.0)]), fs.Coulomb(0.18, 0.3)
+    keys = dict(WELL, damping_rate=0.05, setpoint_time_constant=1.0)
+    exact = ds.string_model(string, walls, treatment="exact", **keys)
+    captured = ds.string_model(string, walls, treatment="captured", **keys)
+    assert isinstance(exact, fs.StringRig) and isinstance(captured, fs.TorsionalString)
+    assert exact.damping_rate == captured.damping_rate == 0.05
+    assert exact.setpoint_time_constant == captured.setpoint_time_constant == 1.0
+    w_set, T, kt = 3.0, 1.5, 0.1
+    rig = fs.StringRig(string, walls, elements=8, wall_contacts=False, top_drive="prescribed_speed",
+                       surface_speed=w_set, setpoint_time_constant=T, damping_rate=kt, damping_time=0.05)
+    times = np.linspace(0.0, 30.0, 61)
+    result = fs.simulate(rig, 30.0, output_times=times, rtol=1e-10, atol=1e-10)
+    assert result.completed
+    np.testing.assert_allclose(ds.surface_speed(rig, result), w_set * (1.0 - np.exp(-times / T)), rtol=0, atol=1e-8)
+    section = string.sections[0]
+    j_string = section.density * np.pi / 32.0 * (section.outer_diameter ** 4 - section.inner_diameter ** 4) * 1000.0
+    assert ds.surface_torque(rig, result)[-1] == pytest.approx(kt * j_string * w_set, rel=1e-6)
+
+
 def test_the_torsional_string_takes_the_one_survey_type():
     """fs.Survey or (measured_depth, inclination): the same well in one vertical plane gives the same bounds bit for
     bit; a survey whose azimuth turns gives the minimum-curvature arc's inclination."""
@@ -214,6 +240,8 @@ def test_a_scenario_with_treatment_auto_resolves_by_the_rule():
     assert small.cases[0].rig.params["treatment"] == "exact"
     run = scenario.run_case(small.cases[0])
     assert isinstance(run.rig, fs.StringRig) and len(run.rig.contact_nodes) == 20
-    # damping_rate, a key only the captured string takes, chooses it at 20 contacts too
-    keyed = scenario.loads(_with(_with(auto, "elements = 60", "elements = 20"), "step = 2e-3", "step = 2e-3"))
+    # stick_band_speed, a key only the captured string takes, chooses it at 20 contacts too (damping_rate, k_t, is
+    # the exact StringRig's too)
+    keyed = scenario.loads(_with(_with(auto, "elements = 60", "elements = 20"), "damping_rate = 0.05",
+                                 "damping_rate = 0.05\nstick_band_speed = 1.5"))
     assert keyed.cases[0].rig.params["treatment"] == "captured"
