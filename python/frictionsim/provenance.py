@@ -24,7 +24,7 @@ import subprocess
 import sys
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, Dict, Optional, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
@@ -37,10 +37,11 @@ SCHEMA = "frictionsim.provenance/1"
 #: grid or a string's 300 wall forces would otherwise swamp the record (the rig's repr still rebuilds it).
 _LIST_LIMIT = 64
 
-#: SolverOptions fields worth recording (the class's limits and methods are not options of a run).
-_OPTION_FIELDS = ("method", "linear_solver", "rtol", "atol", "atol_per_state", "output_times", "record_steps",
-                  "max_steps", "max_step", "initial_step", "max_events_in_window", "event_window", "timeout",
-                  "max_output_rows", "stop_conditions", "record_event_rows", "record_event_states")
+def _option_fields(options: Any) -> Tuple[str, ...]:
+    """The fields of a SolverOptions as its class binds them (every settable attribute, in the binding's order): an
+    option added in C++ is recorded without an entry here (the class's limits and methods are not options)."""
+    return tuple(name for name, member in vars(type(options)).items()
+                 if not name.startswith("_") and isinstance(member, property) and member.fset is not None)
 
 
 def collect(*, command: Union[str, Iterable[str], None] = None, rigs: Any = (), solver_options: Any = None,
@@ -212,7 +213,7 @@ def solver_options_record(options: Any) -> Dict[str, Any]:
     if isinstance(options, Mapping):
         return to_json_safe(dict(options))
     record: Dict[str, Any] = {}
-    for name in _OPTION_FIELDS:
+    for name in _option_fields(options):
         if not hasattr(options, name):
             continue
         if name == "stop_conditions":

@@ -44,7 +44,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
              events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
              record_event_states: Optional[bool] = None, step: Optional[float] = None,
-             theta: Optional[float] = None, contact_solver: Optional[str] = None) -> Result:
+             theta: Optional[float] = None, projection_band: Optional[float] = None,
+             contact_solver: Optional[str] = None) -> Result:
     """Simulate ``rig`` from ``t_start`` to ``t_end`` [s] and return a :class:`Result`.
 
     Every stick-slip switch and velocity reversal is located as an event and the integrator restarts exactly
@@ -70,6 +71,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
         ``output_times``, and t_end - t_start a whole number of steps. Refused for the ODE methods.
     theta : float, optional
         Moreau-Jean's theta in [0.5, 1] (default 0.5: the linear part's energy kept; 1 damps it).
+    projection_band : float, optional
+        "explicit_projection": the speed [rad/s] below which the clipped predicted contact force acts (A&S's stick
+        band, 1.5 rad/s; default 0: only at rest). Refused for the ODE methods.
     contact_solver : {"active_set", "projected_gauss_seidel"}, optional
         The solver of each Moreau-Jean step's contact problem: the exact active set (the default) or projected
         Gauss-Seidel sweeps (the same steps where the law is monotone, static == kinetic; slower). "moreau_jean"
@@ -154,7 +158,7 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     if record_event_states is not None:
         options.record_event_states = _flag("record_event_states", record_event_states)
     time_stepping = method in TIME_STEPPING_METHODS or (method == "automatic" and _is_time_stepping(rig))
-    for name, value in (("step", step), ("theta", theta)):
+    for name, value in (("step", step), ("theta", theta), ("projection_band", projection_band)):
         if value is None:
             continue
         if not time_stepping:

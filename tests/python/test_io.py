@@ -75,6 +75,37 @@ def test_the_record_rebuilds_the_rig_and_reruns_it_to_the_bit(run):
     assert again.stats == m["solver_stats"]
 
 
+def test_a_time_stepped_run_records_its_step_and_reruns_from_the_record_to_the_bit():
+    """The record reads SolverOptions' fields from the binding, so an option added in C++ is recorded: the
+    time-stepping methods' step, theta, projection_band and contact_solver were left out while a list named them,
+    and a captured string's run could not be rerun from its record."""
+    from frictionsim import drillstring as ds
+
+    model = fs.TorsionalString(ds.field_string(), elements=12)
+    run = fs.simulate(model, 0.5, method="moreau_jean", step=2.5e-3, theta=0.75, contact_solver="active_set")
+    options = run.metadata["solver_options"]
+    assert options["step"] == 2.5e-3 and options["theta"] == 0.75 and options["projection_band"] == 0.0
+    assert options["method"] == "moreau_jean" and options["contact_solver"] == "active_set"
+    namespace = {name: getattr(fs, name) for name in fs.__all__}
+    again = fs.simulate(eval(run.metadata["rigs"][0]["repr"], namespace), 0.5,  # noqa: S307 - our own repr
+                        **{key: options[key] for key in ("method", "step", "theta", "projection_band",
+                                                         "contact_solver")})
+    assert same_bits(again.t, run.t) and same_bits(again.states, run.states)
+    changed = fs.simulate(model, 0.5, method="moreau_jean", step=2.5e-3)  # theta 0.5: another trajectory
+    assert not same_bits(changed.states, run.states)
+    # the explicit projection's stick band (A&S's 1.5 rad/s) is recorded and reruns likewise
+    clipped = fs.simulate(model, 0.5, method="explicit_projection", step=1e-4, projection_band=1.5)
+    options = clipped.metadata["solver_options"]
+    assert options["projection_band"] == 1.5 and options["method"] == "explicit_projection"
+    again = fs.simulate(model, 0.5, **{key: options[key] for key in ("method", "step", "projection_band")})
+    assert same_bits(again.states, clipped.states)
+    with pytest.raises(InvalidParameterError, match="projection_band") as info:
+        fs.simulate(model, 0.5, method="explicit_projection", step=1e-4, projection_band=-1.0)
+    assert info.value.parameter == "projection_band"
+    with pytest.raises(InvalidParameterError, match="projection_band"):  # an option of the time-stepping methods
+        fs.simulate(fs.StringRig(ds.field_string(), fs.Coulomb(0.2, 0.3), elements=4), 0.1, projection_band=1.0)
+
+
 def test_a_failed_run_records_its_provenance_too():
     rig = torsional_rig()
     with pytest.raises(fs.SimulationError) as error:
