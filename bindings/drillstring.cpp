@@ -378,12 +378,14 @@ const char* const rig_description = R"doc(
 A drill string on the event-driven engine (drillstring/string_rig.hpp): the lumped string of a DrillString (N
 elements of equal length, node 0 at the top, node N at the bit), in torsion and optionally axially:
 
-    J_i w_i' = tau_i - tau_{i-1} [+ T_m at node 0] - T_wall,i [- T_bit at node N]
+    J_i w_i' = tau_i - tau_{i-1} - k_t J_s,i w_i [+ T_m at node 0] - T_wall,i [- T_bit at node N]
     m_i v_i' = F_i - F_{i-1} + w_b,i cos I [- H at node 0] [+ F_x sin(2 pi f_x t) at excitation_node] - F_wall,i [- W]
     tau_e = k_e (th_{e+1} - th_e) + beta k_e (w_{e+1} - w_e)   (and the same for F_e with E A / dx)
 
+(k_t, damping_rate: Aarsnes & Shor's viscous damping against absolute rotation, J_s,i node i's string inertia.)
 Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
-+-T_max) with anti-windup, or a prescribed surface speed. A wall contact at each chosen node with `friction` (any
++-T_max) with anti-windup, or a prescribed surface speed; either ramps w_set from rest as w_set (1 - exp(-t / T_SP))
+with setpoint_time_constant T_SP > 0. A wall contact at each chosen node with `friction` (any
 law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
 inclined hole's buoyed weight w_b sin I (per node with node_inclinations). Torsion-only: exact per-contact stick;
 axial=True: friction against the resultant of axial and circumferential sliding (paper 000's friction vector),
