@@ -2,13 +2,15 @@
 // curve in steady sliding, presliding hysteresis with non-local memory (Masing transition curves, inner loops that
 // close and are wiped out, the first loop closing on the virgin curve), LuGre when the hysteresis force is linear
 // without memory and n = 1; and the engine's own: the memory updated at the located reversals on both integrators,
-// parameter rules, the energy balance on the axial rig.
+// parameter rules, the energy balance on the axial rig; on a planar wall (wall_contact.hpp): the 1D law along an
+// axis, the reversal ruled for 2D sliding against its closed form, passivity over closed paths.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include <frictionsim/contact/wall_contact.hpp>
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
@@ -76,6 +78,97 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
     }
     return NAN;
 }
+
+/// A node on a planar wall (PlanarWallContact<Leuven>, r = 0.1 m) whose axial speed v(t) and rotation w(t) are
+/// prescribed, motion(t, v, w): the planar counterpart of KinematicRig. States: the law's, the contact's reference
+/// axis phi, the friction work int (f_a v + r f_t w) dt. friction_force: F along the axis, f_a cos phi + f_t sin phi.
+template <class Motion>
+struct PlanarKinematic {
+    using Contact = PlanarWallContact<Leuven>;
+    static constexpr std::size_t Z = Leuven::state_count, axis = Z, work = Z + 1;
+    static constexpr std::size_t state_size = Z + 2, guard_count = Contact::guard_count;
+    static constexpr bool stiff = true;
+    static constexpr double radius = 0.1;
+
+    PlanarKinematic(const Leuven& law, Motion m, double phi) : contact(law, radius, normal, 1e-3), motion(m), phi0(phi) {}
+
+    Contact contact;
+    Motion motion;
+    double phi0;
+
+    PlanarResponse response(double t, const double* x, int mode, double& v, double& w) const {
+        motion(t, v, w);
+        return contact.respond(w, v, 0.0, 0.0, x, mode, 1.0, 1.0);
+    }
+    void rhs(double t, const double* x, int mode, double* dx) const {
+        double v = 0.0, w = 0.0;
+        const PlanarResponse r = response(t, x, mode, v, w);
+        std::fill(dx, dx + state_size, 0.0);
+        contact.state_derivative(w, v, x, mode, dx);
+        dx[work] = r.axial_force * v + r.torque * w;
+    }
+    void guards(double t, const double* x, int mode, double* g) const {
+        double v = 0.0, w = 0.0;
+        motion(t, v, w);
+        contact.guards(w, v, PlanarLoads{}, x, mode, 1.0, 1.0, g);
+    }
+    int guard_direction(std::size_t, int) const { return -1; }
+    const char* guard_name(std::size_t k, int m) const { return Contact::guard_name(k, m); }
+    const char* mode_name(int m) const { return Contact::mode_name(m); }
+    int initial_mode(double t, const double* x) const {
+        double v = 0.0, w = 0.0;
+        motion(t, v, w);
+        return contact.initial_mode(w, v, PlanarLoads{}, x);
+    }
+    int switch_mode(double t, double* x, int mode, const int* fired) const {
+        double v = 0.0, w = 0.0, lost = 0.0;
+        motion(t, v, w);
+        return contact.switch_mode(w, v, PlanarLoads{}, x, mode, fired, 1.0, 1.0, lost);
+    }
+    double friction_force(double t, const double* x, int mode) const {
+        double v = 0.0, w = 0.0;
+        const PlanarResponse r = response(t, x, mode, v, w);
+        return r.axial_force * std::cos(x[axis]) + r.torque / radius * std::sin(x[axis]);
+    }
+    std::array<double, state_size> initial_state() const {
+        std::array<double, state_size> x{};
+        x[axis] = phi0;
+        return x;
+    }
+    std::array<const char*, state_size> state_names() const {
+        std::array<const char*, state_size> n{};
+        for (std::size_t i = 0; i < Z; ++i) n[i] = Leuven::state_names[i];
+        n[axis] = "slip_axis";
+        n[work] = "friction_work";
+        return n;
+    }
+};
+
+/// The presliding test path of the inner-loop case below (fractions of the 80 um range): 0 -> 0.75 -> -0.5 ->
+/// 0.25 -> -0.5 -> -0.875, one segment per second; the loop -0.5 -> 0.25 -> -0.5 closes and is wiped out.
+KnotPath inner_loop_path() {
+    const double range = 80 * um;
+    return {{0, 0.75 * range, -0.5 * range, 0.25 * range, -0.5 * range, -0.875 * range}, 1.0};
+}
+
+/// Circular sliding q = V (cos W t, sin W t) at speed V, the axis phi from 0: with psi = W t - phi and K = V / l
+/// (l the presliding length), d phi/dt = b K sin psi, so psi' = W - b K sin psi (Adler's equation). For W > K
+/// from psi = 0 on branch +1: tan(psi / 2) = (K + w' tan(w' (t - c1) / 2)) / W, w' = sqrt(W^2 - K^2),
+/// c1 = (2 / w') atan(K / w'); q . d = V cos psi falls to 0 at psi = pi / 2, at
+/// t_r = (2 / w') [atan((W - K) / w') + atan(K / w')]. Then on branch -1: tan(psi / 2) = (-K + w' tan(w' (t - c2) /
+/// 2)) / W, c2 = t_r - (2 / w') atan((W + K) / w'), while psi < pi. u = V cos psi is what the 1D law sees.
+struct CircleClosedForm {
+    double V, W, K;
+    double wp() const { return std::sqrt(W * W - K * K); }
+    double reversal() const { return 2.0 / wp() * (std::atan((W - K) / wp()) + std::atan(K / wp())); }
+    double psi(double t) const {
+        const double c1 = 2.0 / wp() * std::atan(K / wp()), c2 = reversal() - 2.0 / wp() * std::atan((W + K) / wp());
+        if (t <= reversal()) return 2.0 * std::atan((K + wp() * std::tan(wp() * (t - c1) / 2.0)) / W);
+        return 2.0 * std::atan((-K + wp() * std::tan(wp() * (t - c2) / 2.0)) / W);
+    }
+    double operator()(double t) const { return V * std::cos(psi(t)); }
+    double end() const { return reversal() - 2.0 / wp() * std::atan((W + K) / wp()) + pi / wp(); }  ///< psi = pi
+};
 
 }  // namespace
 
@@ -258,4 +351,195 @@ TEST_CASE("Leuven parameter rules: each field rejected naming it", "[leuven][val
     CHECK(bad([](Leuven::Params& p) { p.micro_damping = -1.0; }) == "micro_damping");
     CHECK(bad([](Leuven::Params& p) { p.viscous_damping = INFINITY; }) == "viscous_damping");
     CHECK(Leuven::fields.size() == 10);
+}
+
+TEST_CASE("Leuven on a planar wall: purely axial or purely torsional sliding is the 1D law, force for force",
+          "[leuven][wall_contact]") {
+    // the planar contact's axis along v (phi = 0) or along r w (phi = pi / 2) against KinematicRig under the same
+    // path, with sigma_1 and sigma_2: the same reversals at the same roots, the same forces and memory
+    const KnotPath a = inner_loop_path();
+    const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
+    const bool torsional = GENERATE(false, true);
+    INFO(method_name(method) << (torsional ? ", torsional" : ", axial"));
+    const Leuven law(params(4.0, 20.0, 3.0));
+    SolverOptions o = tight(method, grid(5.0, 1000));
+    o.rtol = 1e-12;  // what is left between the runs is the integrators' error on two state vectors
+    o.atol = 1e-17;
+    const KinematicRig rig(law, a, ConstantSignal(normal));
+    const Result line = simulate(rig, 5.0, o);
+    const auto motion = [a, torsional](double t, double& v, double& w) {
+        v = torsional ? 0.0 : a(t);
+        w = torsional ? a(t) / 0.1 : 0.0;
+    };
+    const PlanarKinematic<decltype(motion)> node(law, motion, torsional ? pi / 2 : 0.0);
+    const Result plane = simulate(node, 5.0, o);
+    // the right-hand sides agree at every state of the 1D run: bit for bit along v, to cos(pi / 2) along r w
+    for (std::size_t i = 0; i < line.rows(); ++i) {
+        std::array<double, Leuven::state_count + 2> x1{}, d1{}, xp{}, dp{};
+        for (std::size_t j = 0; j < x1.size(); ++j) x1[j] = line.state(i, j);
+        std::copy(x1.begin(), x1.begin() + Leuven::state_count, xp.begin());
+        xp[Leuven::state_count] = node.phi0;
+        rig.rhs(line.t[i], x1.data(), line.mode[i], d1.data());
+        node.rhs(line.t[i], xp.data(), line.mode[i], dp.data());
+        const double f1 = rig.friction_force(line.t[i], x1.data(), line.mode[i]);
+        const double fp = node.friction_force(line.t[i], xp.data(), line.mode[i]);
+        if (torsional) {
+            CHECK(fp == Approx(f1).epsilon(1e-15).margin(1e-15));
+            CHECK(dp[Leuven::presliding] == Approx(d1[Leuven::presliding]).epsilon(1e-15).margin(1e-20));
+        } else {
+            CHECK(fp == f1);
+            CHECK(dp[Leuven::presliding] == d1[Leuven::presliding]);
+        }
+    }
+    REQUIRE(line.rows() == 1001);
+    REQUIRE(plane.rows() == 1001);
+    REQUIRE(line.events.size() == 3);
+    REQUIRE(plane.events.size() == 3);
+    for (std::size_t k = 0; k < 3; ++k) {
+        CHECK(plane.events[k].time == Approx(line.events[k].time).margin(1e-9));
+        CHECK(plane.events[k].name == "sliding_reversal");
+        CHECK(plane.events[k].mode_after == line.events[k].mode_after);
+    }
+    double gap = 0.0;
+    for (std::size_t i = 0; i <= 1000; ++i) {
+        gap = std::max(gap, std::abs(plane.friction_force[i] - line.friction_force[i]));
+        for (std::size_t j = 0; j < Leuven::state_count; ++j)
+            CHECK(plane.state(i, j) == Approx(line.state(i, j)).margin(1e-9 * um));
+    }
+    INFO("max |F_planar - F_1D| = " << gap << " N");
+    CHECK(gap < 1e-9 * 4.0);  // F_s = 4 N
+    // the axis stays put: d x q = 0 along an axis
+    CHECK(plane.state(1000, PlanarKinematic<decltype(motion)>::axis) == Approx(torsional ? pi / 2 : 0.0).margin(1e-15));
+    // the friction work is the 1D law's int F v dt
+    CHECK(plane.state(1000, Leuven::state_count + 1) ==
+          Approx(line.state(1000, Leuven::state_count + 1)).epsilon(1e-9).margin(1e-15));
+}
+
+TEST_CASE("Leuven on a planar wall: sliding along a tilted line keeps the 1D memory, inner loops wiped out",
+          "[leuven][wall_contact]") {
+    // q = u(t) (cos 0.6, sin 0.6): both components slide, q reverses through zero (a 180 degree turn) at each knot
+    const KnotPath a = inner_loop_path();
+    const double alpha = 0.6;
+    const Leuven law(params(4.0));
+    const Result line =
+        simulate(KinematicRig(law, a, ConstantSignal(normal)), 5.0, tight(Method::cvode_bdf, grid(5.0, 1000)));
+    const auto motion = [a, alpha](double t, double& v, double& w) {
+        v = a(t) * std::cos(alpha);
+        w = a(t) * std::sin(alpha) / 0.1;
+    };
+    const PlanarKinematic<decltype(motion)> node(law, motion, alpha);
+    const Result plane = simulate(node, 5.0, tight(Method::cvode_bdf, grid(5.0, 1000)));
+    REQUIRE(plane.events.size() == 3);
+    for (std::size_t i = 0; i <= 1000; i += 5) {
+        CHECK(plane.friction_force[i] == Approx(line.friction_force[i]).margin(1e-8));
+        for (std::size_t j = 0; j < Leuven::state_count; ++j)
+            CHECK(plane.state(i, j) == Approx(line.state(i, j)).margin(1e-8 * um));
+    }
+    // three turning points held after the inner reversal (t = 3.5 s); by the end the loop has closed: one left
+    CHECK(plane.state(700, Leuven::count) == 3.0);
+    CHECK(law.turning_points(row(plane, 1000).data(), -1) == 1);
+    // the force vector lies along the line: f_t / f_a = tan(alpha)
+    double v = 0.0, w = 0.0;
+    const double t = plane.t[300];
+    const std::array<double, Leuven::state_count> z = row(plane, 300);
+    std::array<double, Leuven::state_count + 1> zs{};
+    std::copy(z.begin(), z.end(), zs.begin());
+    zs[Leuven::state_count] = plane.state(300, Leuven::state_count);
+    motion(t, v, w);
+    const PlanarResponse r = node.contact.respond(w, v, 0.0, 0.0, zs.data(), -1, 1.0, 1.0);
+    CHECK(r.torque / 0.1 / r.axial_force == Approx(std::tan(alpha)).epsilon(1e-12));
+}
+
+TEST_CASE("Leuven on a planar wall: a turn past 90 degrees within a presliding length is a reversal at the closed-"
+          "form time, with the 1D memory of the projected motion; a slow turn is none",
+          "[leuven][wall_contact]") {
+    // V = 0.1 mm/s, l = F_s / k = 40 um: K = V / l = 2.5 rad/s (CircleClosedForm)
+    const Leuven law(params(4.0));
+    const double V = 1e-4, K = V / law.presliding_length(normal);
+    REQUIRE(K == Approx(2.5).epsilon(1e-12));
+    SECTION("W = 2 K: q turns faster than the axis follows") {
+        const CircleClosedForm circle{V, 2.0 * K, K};
+        const auto motion = [circle](double t, double& v, double& w) {
+            v = circle.V * std::cos(circle.W * t);
+            w = circle.V * std::sin(circle.W * t) / 0.1;
+        };
+        const double t_end = 0.98 * circle.end();
+        const PlanarKinematic<decltype(motion)> node(law, motion, 0.0);
+        const Result plane = simulate(node, t_end, tight(Method::cvode_bdf, grid(t_end, 400)));
+        // the 1D law driven by the projected motion u = q . a = V cos psi, psi in closed form
+        const Result line = simulate(KinematicRig(law, circle, ConstantSignal(normal)), t_end,
+                                     tight(Method::cvode_bdf, grid(t_end, 400)));
+        REQUIRE(plane.events.size() == 1);
+        REQUIRE(line.events.size() == 1);
+        const Event& e = plane.events[0];
+        INFO("t_r = " << circle.reversal() << " s, the node's direction has turned " << circle.W * e.time * 180 / pi
+                      << " degrees");
+        CHECK(e.name == "sliding_reversal");
+        CHECK(e.mode_before == 1);
+        CHECK(e.mode_after == -1);
+        CHECK(e.time == Approx(circle.reversal()).epsilon(1e-8));
+        CHECK(line.events[0].time == Approx(circle.reversal()).epsilon(1e-8));
+        CHECK(circle.W * e.time > pi / 2);  // more than 90 degrees from the first direction: 138.6
+        // at the reversal the axis lags q by exactly 90 degrees
+        REQUIRE(e.state_after.size() == PlanarKinematic<decltype(motion)>::state_size);
+        CHECK(circle.W * e.time - e.state_after[Leuven::state_count] == Approx(pi / 2).epsilon(1e-8));
+        // the memory pushed there is the 1D law's: one turning point at the same z
+        CHECK(e.state_after[Leuven::count] == 1.0);
+        CHECK(e.state_after[Leuven::turning] == Approx(line.events[0].state_after[Leuven::turning]).epsilon(1e-8));
+        CHECK(e.state_after[Leuven::turning] == Approx(e.state_after[Leuven::presliding]).epsilon(1e-15));
+        for (std::size_t i = 0; i < plane.rows(); ++i) {
+            CHECK(plane.friction_force[i] == Approx(line.friction_force[i]).margin(1e-7));
+            CHECK(plane.state(i, Leuven::presliding) == Approx(line.state(i, Leuven::presliding)).margin(1e-7 * um));
+        }
+    }
+    SECTION("W = K / 2: the axis keeps up (gross sliding on a curve), lagging by asin(W / K) = 30 degrees") {
+        const double W = 0.5 * K;
+        const auto motion = [V, W](double t, double& v, double& w) {
+            v = V * std::cos(W * t);
+            w = V * std::sin(W * t) / 0.1;
+        };
+        const PlanarKinematic<decltype(motion)> node(law, motion, 0.0);
+        const Result plane = simulate(node, 12.0, tight(Method::cvode_bdf, grid(12.0, 120)));
+        CHECK(plane.events.empty());
+        const std::size_t last = plane.rows() - 1;
+        const double lag = W * 12.0 - plane.state(last, PlanarKinematic<decltype(motion)>::axis);
+        CHECK(lag == Approx(std::asin(0.5)).epsilon(1e-6));
+        // steady: F = S(u), u = V cos(lag): the Stribeck curve along the axis
+        CHECK(plane.friction_force[last] == Approx(law.stribeck_level(V * std::cos(lag), normal)).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("Leuven on a planar wall: closed sliding paths take work (no energy created), the force stays within "
+          "the static bound",
+          "[leuven][wall_contact][energy]") {
+    // circles in velocity space (closed paths of the node, period 2 pi / W) turning fast (reversals every half
+    // turn of psi) and slowly, and the tilted inner-loop path, with and without sigma_1, sigma_2
+    const double V = 1e-4;
+    for (double n : {1.0, 4.0}) {
+        for (double sigma : {0.0, 10.0}) {
+            const Leuven law(params(n, sigma, sigma));
+            const double K = V / law.presliding_length(normal);
+            for (double W : {0.5 * K, 2.0 * K, 8.0 * K}) {
+                const auto motion = [V, W](double t, double& v, double& w) {
+                    v = V * std::cos(W * t);
+                    w = V * std::sin(W * t) / 0.1;
+                };
+                const PlanarKinematic<decltype(motion)> node(law, motion, 0.0);
+                const double period = 2 * pi / W;
+                const Result r = simulate(node, 6 * period, tight(Method::cvode_bdf, grid(6 * period, 6 * 50)));
+                INFO("n = " << n << ", sigma = " << sigma << ", W / K = " << W / K << ": " << r.events.size()
+                            << " reversals");
+                REQUIRE(r.rows() == 301);
+                if (W > K) CHECK(r.events.size() >= 6);
+                const std::size_t work = PlanarKinematic<decltype(motion)>::work;
+                for (std::size_t p = 0; p < 6; ++p) CHECK(r.state(50 * (p + 1), work) - r.state(50 * p, work) > 0.0);
+                double peak = 0.0;  // the hysteresis force (sigma_1 dz/dt, sigma_2 u ride on it)
+                for (std::size_t i = 0; i < r.rows(); ++i) {
+                    const std::array<double, Leuven::state_count> z = row(r, i);
+                    peak = std::max(peak, std::abs(law.hysteresis_force(normal, z.data(), r.mode[i])));
+                }
+                CHECK(peak <= 0.4 * normal * (1 + 1e-9));
+            }
+        }
+    }
 }

@@ -16,6 +16,7 @@
 #include "frictionsim/string/string_rig_params.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/friction/dahl.hpp"
+#include "frictionsim/friction/leuven.hpp"
 #include "frictionsim/friction/lugre.hpp"
 #include "frictionsim/friction/stribeck.hpp"
 #include "frictionsim/simulate.hpp"
@@ -356,7 +357,7 @@ namespace {
 /// A horizontal string tripped in at v and turned at w, both prescribed at the top, after 6 s: the hook force,
 /// the surface torque, and the closed forms sum mu N v / |q|, sum mu N r (w r) / |q|, |q| = sqrt(v^2 + (w r)^2).
 template <class Law>
-void check_drag(const Law& law, double mu, double w) {
+void check_drag(const Law& law, double mu, double w, double speed_epsilon = 1e-8) {
     const double v = 0.2;
     StringRigParams p;
     p.inclination = pi / 2.0;
@@ -384,7 +385,7 @@ void check_drag(const Law& law, double mu, double w) {
     // the hook holds the string back against the drag (no weight along a horizontal hole)
     CHECK(-rig.hook_force(6.0, x, mode) == Approx(mu * normal * v / slide).epsilon(1e-6));
     CHECK(rig.surface_torque(6.0, x, mode) == Approx(mu * normal * radius * w * radius / slide).margin(1e-6));
-    CHECK(x[rig.speed(8)] == Approx(v).epsilon(1e-8));  // steady: the whole string at the hook's speed
+    CHECK(x[rig.speed(8)] == Approx(v).epsilon(speed_epsilon));  // steady: the whole string at the hook's speed
 }
 
 }  // namespace
@@ -393,6 +394,73 @@ TEST_CASE("string rig: rotation cuts the axial drag as the friction vector predi
     for (double w : {0.0, 0.5, 2.0, 8.0}) check_drag(Coulomb(0.3), 0.3, w);
     // Dahl, read along the resultant: saturated in steady sliding at mu N, the same drag
     for (double w : {0.0, 2.0}) check_drag(Dahl(0.3, 1e6), 0.3, w);
+    // Leuven (a memory of reversals: the planar contact's reference axis follows the sliding over l = F_s / k,
+    // ~0.3 mm here): in steady sliding F = S(|q|) = 0.3 F_N along q, the same drag
+    Leuven::Params l;
+    l.coulomb_coefficient = l.static_coefficient = 0.3;
+    l.presliding_stiffness = 1e7;
+    for (double w : {0.0, 2.0}) check_drag(Leuven(l), 0.3, w, 1e-7);  // stiff: CVODE BDF's error at rtol 1e-9
+}
+
+TEST_CASE("string rig: Leuven walls in axial runs: reversals where an axial vibration turns the sliding back, none "
+          "while the rotation dominates, the energy balance closed",
+          "[string_rig][leuven]") {
+    // a horizontal 300 m string held axially at the top, turned at w, shaken axially at the bottom node (5 Hz)
+    const auto run = [](double w, double shake) {
+        StringRigParams p;
+        p.inclination = pi / 2.0;
+        p.damping_time = 0.01;
+        p.surface_speed = w;
+        p.initial_speed = w;
+        p.excitation_amplitude = shake;
+        p.excitation_frequency = 5.0;
+        StringRigSetup s;
+        s.elements = 3;
+        s.axial = true;
+        s.top_drive = TopDrive::prescribed_speed;
+        s.excitation_node = 3;
+        Leuven::Params l;
+        l.presliding_stiffness = 1e7;  // l = F_s / k ~ 0.3 mm
+        const StringRig<Leuven> rig(pipe_string(300.0), p, s, Leuven(l));
+        SolverOptions o;
+        o.rtol = 1e-11;  // the balance's residual falls with rtol: 2e-3 / 4e-4 / 4e-6 J at 1e-9 / 1e-10 / 1e-11
+        o.atol = 1e-12;  // (spinning; ~8300 J of friction work), from the presliding transient at the start
+        o.output_times = grid(2.0, 0.01);
+        const Result r = simulate(rig, 2.0, o);
+        REQUIRE(r.completed);
+        using Rig = StringRig<Leuven>;
+        const std::size_t k = rig.work_offset(), n = r.state_count();
+        const double* x0 = &r.states[0];
+        const auto stored = [&](const double* x) {
+            return rig.kinetic_energy(x) + rig.elastic_energy(x) + rig.gravity_potential(x);
+        };
+        double peak_axial = 0.0;
+        for (std::size_t row = 1; row < r.rows(); ++row) {
+            const double* x = &r.states[row * n];
+            const double in = x[k + Rig::drive_work] + x[k + Rig::hoist_work] + x[k + Rig::excitation_work];
+            const double out = stored(x) - stored(x0) + x[k + Rig::wall_friction_work] + x[k + Rig::damping_work];
+            CHECK(in == Approx(out).margin(1e-6 + 2e-7 * std::abs(x[k + Rig::wall_friction_work])));
+            for (std::size_t i = 1; i <= 3; ++i) peak_axial = std::max(peak_axial, std::abs(x[rig.speed(i)]));
+        }
+        std::size_t reversals = 0;
+        for (const Event& e : r.events) {
+            CHECK(e.name.find("sliding_reversal") != std::string::npos);
+            CHECK(e.mode_before == -e.mode_after);
+            reversals += e.mode_before == -e.mode_after;
+        }
+        return std::make_pair(reversals, peak_axial / (w * rig.node_radius()[1]));
+    };
+    // the rotation dominates (r w = 0.25 m/s above every axial speed): gross sliding throughout, no turning point
+    const auto [spinning, spinning_ratio] = run(4.0, 4e3);
+    INFO("spinning: max |v| / r w = " << spinning_ratio);
+    REQUIRE(spinning_ratio > 0.05);
+    REQUIRE(spinning_ratio < 1.0);
+    CHECK(spinning == 0);
+    // barely turning (r w = 1.3 mm/s): the vibration reverses the sliding at each contact twice a cycle
+    const auto [creeping, creeping_ratio] = run(0.02, 4e3);
+    INFO("creeping: max |v| / r w = " << creeping_ratio << ", " << creeping << " reversals");
+    REQUIRE(creeping_ratio > 5.0);
+    CHECK(creeping >= 10);
 }
 
 TEST_CASE("string rig: a drive torque below the summed static wall torque leaves the string stuck",

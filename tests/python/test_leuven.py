@@ -197,3 +197,50 @@ def test_bad_parameters_are_value_errors_naming_the_parameter(changes, parameter
     with pytest.raises(ValueError, match=parameter) as info:
         law(**changes)
     assert isinstance(info.value, fs.InvalidParameterError) and info.value.parameter == parameter
+
+
+# --------------------------------------------------------------------------- on a string's planar walls
+def test_a_string_rig_with_leuven_walls_runs_axially_the_1d_law_along_an_axis_that_follows_the_sliding():
+    # fs.StringRig(axial=True) with fs.Leuven at the walls (contact/wall_contact.hpp: the 1D law along a reference
+    # axis, a state slip_axis_i, that follows the sliding over l = F_s / k; a reversal is q . d falling through 0).
+    # Pulled at the hook speed v along a horizontal hole while turning at w, in steady sliding: the axis lies along
+    # q = (v, r w), F = S(|q|) = mu F_N against it, so the hook holds back mu F_N v / |q| (paper 000's friction
+    # vector) and the drive supplies mu F_N r (r w) / |q|; no reversal is counted
+    pipe = fs.PipeSection(length=300.0)
+    wall = law(mu=0.3, mu_static=0.3, presliding_stiffness=1e7, micro_damping=0.0, viscous_damping=0.0)
+    v, w = 0.2, 2.0
+    rig = fs.StringRig(fs.DrillString([pipe]), wall, elements=4, axial=True, inclination=math.pi / 2,
+                       damping_time=0.02, top_drive="prescribed_speed", surface_speed=w, initial_speed=w,
+                       hook_speed=v, initial_axial_speed=v)
+    result = fs.simulate(rig, 4.0, rtol=1e-9, atol=1e-12, output_times=[4.0])
+    assert result.completed and not result.events
+    r = rig.node_radius[1]
+    axis = [result.states[-1, list(result.state_names).index(f"slip_axis_{i}")] for i in range(1, 5)]
+    assert np.allclose(axis, math.atan2(r * w, v), rtol=0.0, atol=1e-9)
+    slide = math.hypot(v, r * w)
+    normal = sum(rig.normal_forces)
+    assert -rig.hook_force(result.t, result.states)[-1] == pytest.approx(0.3 * normal * v / slide, rel=1e-6)
+    assert rig.surface_torque(result.t, result.states)[-1] == pytest.approx(0.3 * normal * r * r * w / slide, rel=1e-6)
+
+
+def test_a_string_rig_with_leuven_walls_counts_reversals_where_an_axial_vibration_turns_the_sliding_back():
+    # barely turning (r w = 1.3 mm/s) and shaken axially at the bottom (5 Hz): each contact's sliding turns back
+    # twice a cycle, a "sliding_reversal" that flips the branch and pushes a turning point; turning at 4 rad/s
+    # (r w = 0.25 m/s above every axial speed) the sliding never turns back: none
+    pipe = fs.PipeSection(length=300.0)
+    wall = law(presliding_stiffness=1e7, micro_damping=0.0, viscous_damping=0.0)
+    counts = {}
+    for w in (0.02, 4.0):
+        rig = fs.StringRig(fs.DrillString([pipe]), wall, elements=3, axial=True, inclination=math.pi / 2,
+                           damping_time=0.01, top_drive="prescribed_speed", surface_speed=w, initial_speed=w,
+                           excitation_amplitude=4e3, excitation_frequency=5.0, excitation_node=3)
+        result = fs.simulate(rig, 1.0, rtol=1e-8, atol=1e-10)
+        assert result.completed
+        for event in result.events:
+            assert event.name.endswith("sliding_reversal") and event.mode_after == -event.mode_before
+        counts[w] = len(result.events)
+        if w < 1.0:
+            names = list(result.state_names)
+            pushed = result.states[-1, [names.index(f"turning_point_count_{i}") for i in (1, 2, 3)]]
+            assert all(pushed >= 1)
+    assert counts[0.02] >= 15 and counts[4.0] == 0

@@ -18,6 +18,8 @@
 //      void on_reversal(double normal_force, double* z, int from_branch, int to_branch) const;
 // The memory is carried in its states z (rate 0 between events); every rig that locates the kink at v_r = 0 calls
 // note_reversal() (below) when it flips the branch, handing the law its states to update: exact, at the event.
+// Such a law also gives `double presliding_length(double normal_force) const` for the planar wall contact
+// (contact/wall_contact.hpp: the length over which its reference axis follows the sliding direction).
 // Every law has `static constexpr const char* name`. A law never integrates anything itself.
 // check_friction_law<Law>() (below) static_asserts each requirement with a message naming it; the rigs and
 // ContactSwitching call it first, so a law that misses a member fails there, not deep inside a rig.

@@ -152,6 +152,12 @@ bottom_turning_force [N], turning_point_1..8 [m]), which changes only at reversa
         return k * x / (1.0 + p_.hysteresis_shape * k * std::abs(x) / (p_.static_coefficient * normal_force));
     }
 
+    /// F_s / k (m): the presliding displacement scale at F_N (the virgin curve's initial slope reaches F_s there);
+    /// a planar wall contact's reference axis follows the sliding direction over this length (wall_contact.hpp).
+    double presliding_length(double normal_force) const {
+        return p_.static_coefficient * normal_force / p_.presliding_stiffness;
+    }
+
     /// The hysteresis force F_h (N) on branch `branch` (the sign of v_r): the memory's loops closed by z wiped.
     double hysteresis_force(double normal_force, const double* z, int branch) const {
         const Curve c = curve(normal_force, z, branch);

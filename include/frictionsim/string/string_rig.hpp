@@ -25,7 +25,8 @@
 //    complementarity problem is needed at a switch).
 //  * the bit (bit.hpp) at node N, any bit law in (bit speed, weight on bit) -> torque, through DiscContact.
 // States, node by node so that the Jacobian is banded: the drive's (speed_error_integral), then per node theta_i, omega_i,
-// [u_i, v_i], [the wall law's states], then the bit law's states and six work integrals that close the balance
+// [u_i, v_i], [the wall law's states], [slip_axis_i: the planar contact's reference axis, axial runs with a wall law
+// that remembers reversals (wall_contact.hpp)], then the bit law's states and six work integrals that close the balance
 //   drive_work + hoist_work + excitation_work = change of (kinetic + elastic + gravity potential energy)
 //                                               + wall_friction_work + damping_work + bit_work
 // (damping_work: the elements' dampers' and k_t's).
@@ -69,6 +70,7 @@ class StringRig {
     using Wall2 = PlanarWallContact<WallLaw>;
     using BitContact = DiscContact<Bit>;
     static constexpr std::size_t Z = WallLaw::state_count, ZB = Bit::state_count;
+    static constexpr std::size_t A = Wall2::axis_states;  ///< per node in axial runs: the reference axis phi
     static constexpr std::size_t npos = std::numeric_limits<std::size_t>::max();
     static constexpr double gravity = 9.80665;
 
@@ -103,7 +105,7 @@ public:
                 detail::reject(who, "mud_density", "below every section's steel density (buoyed weight > 0)",
                                p_.mud_density);
         axial_ = setup_.axial;
-        block_ = 2 + (axial_ ? 2 : 0) + Z;
+        block_ = 2 + (axial_ ? 2 + A : 0) + Z;
         // contact nodes
         std::vector<std::size_t>& nodes = setup_.contact_nodes;
         if (!setup_.wall_contacts) nodes.clear();
@@ -181,6 +183,8 @@ public:
             if (axial_)
                 start_[speed(i)] = i == 0 && setup_.hoisting == Hoisting::hook_speed ? p_.hook_speed
                                                                                      : p_.initial_axial_speed;
+            if (axial_ && A > 0)  // the reference axis along the initial sliding (axial when at rest)
+                start_[law_state(i) + Z] = std::atan2(radius_[i] * start_[omega(i)], start_[speed(i)]);
         }
     }
 
@@ -417,7 +421,7 @@ public:
             loads_between(t, x, mode, i, above, below, s, a);
             dx[theta(i)] = w;
             double dw = s / inertia_[i], dv = a / mass_[i];
-            for (std::size_t j = 0; j < Z; ++j) dx[law_state(i) + j] = 0.0;
+            for (std::size_t j = 0; j < Z + (axial_ ? A : 0); ++j) dx[law_state(i) + j] = 0.0;
             const std::size_t c = contact_of_[i];
             if (c != npos) {
                 if (axial_) {
@@ -670,7 +674,8 @@ public:
             loads(t, x, mode, i, s, a);
             if (c != npos) {
                 mode[c] = static_cast<std::int8_t>(
-                    axial_ ? walls2_[c].initial_mode(x[omega(i)], x[speed(i)], planar_loads(x, i, s, a))
+                    axial_ ? walls2_[c].initial_mode(x[omega(i)], x[speed(i)], planar_loads(x, i, s, a),
+                                                     x + law_state(i))
                            : walls1_[c].initial_mode(x[omega(i)], s, x + law_state(i), inertia_[i]));
             }
             if constexpr (on_bottom)
@@ -696,7 +701,8 @@ public:
                     if (axial_) {
                         double lost = 0.0;
                         next[c] = static_cast<std::int8_t>(walls2_[c].switch_mode(x[omega(i)], x[speed(i)],
-                                                                                  planar_loads(x, i, s, a), mode[c],
+                                                                                  planar_loads(x, i, s, a),
+                                                                                  x + law_state(i), mode[c],
                                                                                   fired + k, inertia_[i], mass_[i],
                                                                                   lost));
                         x[work_offset() + wall_friction_work] += lost;
@@ -738,6 +744,7 @@ public:
             }
             if constexpr (Z > 0)
                 for (std::size_t j = 0; j < Z; ++j) names[law_state(i) + j] = WallLaw::state_names[j] + tag;
+            if (axial_ && A > 0) names[law_state(i) + Z] = "slip_axis" + tag;
         }
         if constexpr (ZB > 0)
             for (std::size_t j = 0; j < ZB; ++j) names[bit_state() + j] = std::string("bit_") + Bit::state_names[j];
