@@ -90,6 +90,10 @@ def _keywords(engine) -> set:
     return {p.name for p in engine.parameters} | set(_EXTRA_KEYWORDS.get(engine.__name__, ()))
 
 
+#: A StringRig's elements when none are given (StringRigSetup::elements): the string model's default under every
+#: treatment.
+DEFAULT_ELEMENTS = 20
+
 #: Keywords outside each engine's table.
 _EXTRA_KEYWORDS = {
     "StringRig": ("elements", "top_drive", "axial", "hoisting", "wall_contacts", "contact_nodes", "normal_forces",
@@ -126,7 +130,7 @@ def string_treatment(treatment: str = "auto", **keywords: Any) -> str:
     if any(k in exact and k not in SHARED for k in keywords):
         return "exact"
     on_bottom = keywords.get("bit") is not None and float(keywords.get("weight_on_bit", 0.0) or 0.0) > 0.0
-    elements = int(keywords.get("elements", 20))
+    elements = int(keywords.get("elements", DEFAULT_ELEMENTS))
     chosen = _core.automatic_treatment(max(elements - (1 if on_bottom else 0), 0), on_bottom)
     if chosen == "exact" and any(k in captured and k not in SHARED.values() for k in keywords):
         return "mixed" if on_bottom else "captured"
@@ -142,9 +146,15 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
     -> speed_setpoint, end_inertia -> bha_inertia) or a TorsionalString's own (survey, stick_band_speed, ...). A
     keyword the chosen engine cannot take is refused naming it. Run either with :func:`frictionsim.simulate`
     (captured / mixed: ``method="moreau_jean", step=``); both Results' mode column counts the wall contacts at rest.
-    One difference of lumping stays: a StringRig has no wall at node 0 (the top drive's), the captured string has
-    that node's half element's where the well is inclined at the top; they agree as N grows, and exactly in a well
-    vertical at the top (the C++ exact_string builds the StringRig of a TorsionalString).
+    What the keywords leave out is StringRig's default under every treatment (its table describes the string model:
+    drive, gains, torque limit, mud, inclination, a step set-point, 20 elements), not the captured engine's own (A&S
+    Well B's drive, a 60 degree hole, a 1 s set-point ramp, 200 elements), so "auto" changes how the contacts are
+    solved, never the string. One exception: the mixed treatment cannot carry a torque limit (its explicit update
+    would be a switch of its own at every step), so there StringRig's default limit (60 kN m) is left out unless
+    given, which the engine then refuses naming torque_limit: the captured and mixed strings' motor torque is
+    unlimited. One difference of lumping stays: a StringRig has no wall at node 0 (the top drive's), the captured
+    string has that node's half element's where the well is inclined at the top; they agree as N grows, and exactly
+    in a well vertical at the top (the C++ exact_string builds the StringRig of a TorsionalString).
 
         >>> import frictionsim as fs
         >>> from frictionsim import drillstring as ds
@@ -164,6 +174,14 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
             raise InvalidParameterError(f"{key}: treatment {chosen!r} cannot take it (a StringRig keyword without a "
                                         f"captured counterpart; the wall friction comes from `friction`)", key)
         captured[name] = value
+    exact_defaults = dict({p.name: p.default for p in StringRig.parameters}, elements=DEFAULT_ELEMENTS)
+    for key, name in SHARED.items():
+        if key in keywords or name in keywords or key not in exact_defaults:
+            continue
+        if name == "torque_limit" and (chosen == "mixed" or str(keywords.get("top_drive", "")).endswith(
+                "prescribed_speed")):
+            continue  # not carried with the exact bit (see above); a held speed takes whatever torque it needs
+        captured[name] = exact_defaults[key]
     captured.update(wall_coefficients(friction))
     return engine(string, treatment=chosen, **captured)
 

@@ -44,7 +44,13 @@ output_step = 0.02
 SECTIONS = [fs.PipeSection(length=900.0), fs.PipeSection(length=100.0, outer_diameter=0.1651, inner_diameter=0.0714)]
 BY_HAND = dict(elements=60, inclination=1.0, mud_density=1200.0, speed_setpoint=4.0, top_drive_inertia=300.0,
                proportional_gain=3e3, integral_gain=1e3, damping_rate=0.05, friction_coefficient=0.3,
-               kinetic_ratio=0.2 / 0.3)
+               kinetic_ratio=0.2 / 0.3, setpoint_time_constant=0.0)  # what the scenario leaves out: StringRig's
+
+
+def _by_hand_limit(treatment: str) -> dict:
+    """StringRig's default torque limit (60 kN m), which string_model gives the captured string (the mixed one
+    cannot carry a limit: left out there)."""
+    return {} if treatment == "mixed" else dict(torque_limit=6e4)
 
 
 def _with(text: str, old: str, new: str) -> str:
@@ -53,7 +59,8 @@ def _with(text: str, old: str, new: str) -> str:
 
 
 def _bit_speed_by_hand(treatment: str, **extra):
-    string = fs.TorsionalString(fs.DrillString(SECTIONS), treatment=treatment, **{**BY_HAND, **extra})
+    string = fs.TorsionalString(fs.DrillString(SECTIONS), treatment=treatment,
+                                **{**BY_HAND, **_by_hand_limit(treatment), **extra})
     times = np.linspace(0.0, 20.0, 1001)  # output_step = 0.02 s
     return string, fs.simulate(string, 20.0, method="moreau_jean", step=2e-3, output_times=times)
 
@@ -184,6 +191,17 @@ def test_one_string_model_builds_each_treatment_and_counts_stuck_walls_alike():
         stuck = ds.stuck_contacts(run)
         assert stuck[0] == ds.wall_contacts(model) == len(model.contact_nodes)
         assert stuck[-1] == 0 and np.all((stuck >= 0) & (stuck <= ds.wall_contacts(model)))
+    # what the keywords leave out is StringRig's default under every treatment, not the captured engine's own (A&S
+    # Well B's drive, a 60 degree hole, a 1 s ramp, 200 elements): "auto" changes the solver, never the string
+    bare_exact = ds.string_model(string, walls, treatment="exact")
+    for treatment in ("captured", "mixed"):
+        bare = ds.string_model(string, walls, treatment=treatment, bit=fs.NavarroLopezBit(), weight_on_bit=1e4)
+        assert bare.elements == ds.DEFAULT_ELEMENTS and not bare.contact_nodes  # a vertical hole: no wall friction
+        for key, name in ds.SHARED.items():
+            if key in {p.name for p in fs.StringRig.parameters} and name != "torque_limit":
+                assert getattr(bare, name) == getattr(bare_exact, key), key
+        assert bare.torque_limit == (0.0 if treatment == "mixed" else bare_exact.torque_limit)
+    assert bare_exact.torque_limit == 6e4
     with pytest.raises(fs.InvalidParameterError) as error:
         ds.string_model(string, walls, treatment="captured", end_mass=1e3, **WELL)  # StringRig's axial BHA mass
     assert error.value.parameter == "end_mass"
