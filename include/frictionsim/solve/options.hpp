@@ -213,6 +213,9 @@ struct SolverOptions {
         detail::require_positive(who, "step", step);
         if (!(theta >= 0.5 && theta <= 1.0)) detail::reject(who, "theta", "in [0.5, 1]", theta);
         detail::require_non_negative(who, "projection_band", projection_band);
+        if (resolved == Method::moreau_jean && projection_band != 0.0)  // not silently ignored
+            detail::reject(who, "projection_band", "0 with moreau_jean (the explicit projection's stick band)",
+                           projection_band);
         if (resolved == Method::explicit_projection && contact_solver != ContactSolverChoice::active_set)
             throw InvalidParameter("contact_solver", std::string(who) + ": contact_solver must be active_set (the "
                                                      "default) with explicit_projection: its contact force is "

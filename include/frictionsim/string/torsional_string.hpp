@@ -94,7 +94,7 @@ struct TorsionalStringParams {
             {"friction_force", "N m", "node N's contact torque (the bit's with its wall's) over the step"},
             {"bit_speed", "rad/s", "speed of node N, the bit"},
             {"top_drive_speed", "rad/s", "speed of node 0, the top drive"},
-            {"motor_torque", "N m", "the PI motor's torque tau_m"},
+            {"motor_torque", "N m", "the top drive's torque: the PI motor's tau_m, or what holds a prescribed speed"},
             {"stuck_fraction", "1", "share of the nodes at rest (|omega| < slow_speed where set)"},
             {"mode", "1", "wall contacts at rest (a count out of contact_count())"},
         }};
@@ -438,6 +438,10 @@ public:
     /// Off bottom both are the captured string.
     TorsionalString& set_bit_treatment(BitTreatment treatment, double switch_tolerance = 1e-10) {
         detail::require_positive("TorsionalString", "switch_tolerance", switch_tolerance);
+        if (treatment == BitTreatment::exact && p_.torque_limit > 0.0)  // said here, not when the run starts
+            detail::reject("TorsionalString", "torque_limit",
+                           "0 (no limit) with the exact bit (the limited PI's update at each step's start would be "
+                           "a switch of its own)", p_.torque_limit);
         treatment_ = treatment;
         switch_tolerance_ = switch_tolerance;
         return *this;
