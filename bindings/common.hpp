@@ -34,6 +34,11 @@ py::tuple reduce_by_construction(py::handle self, py::tuple args, py::dict kwarg
 using PythonLaws = append<EngineLaws, CallableLaw>::type;
 using FrictionLaw = variant_of<PythonLaws>::type;
 
+/// The names of the string models' top-drive kinds (the keyword top_drive, StringRig's and TorsionalString's alike).
+inline const char* top_drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
+/// `value` (a name of top_drive_name's) as a TopDrive; InvalidParameter naming top_drive, said for `owner`, else.
+TopDrive top_drive_from(py::handle value, const char* owner);
+
 /// The Python object (a bound law) -> the variant; TypeError naming `parameter` for anything else.
 FrictionLaw friction_law_from_python(py::handle law, const char* parameter);
 py::object friction_law_to_python(const FrictionLaw& law);

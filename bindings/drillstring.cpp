@@ -50,7 +50,6 @@ struct string_rig_variant<TypeList<L...>> {
 using BitLaw = std::variant<NavarroLopezBit, DetournayBit>;
 using StringRigVariant = string_rig_variant<PythonLaws>::type;
 
-const char* top_drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
 const char* hoisting_name(Hoisting h) { return h == Hoisting::hook_speed ? "hook_speed" : "hook_load"; }
 
 std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
@@ -264,9 +263,7 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     if (given("elements"))
         setup.elements = count_from(kwargs["elements"], "elements", 1, max_elements);
     if (given("top_drive"))
-        setup.top_drive = choice_from(kwargs["top_drive"], "top_drive", "pi_motor", "prescribed_speed") == "pi_motor"
-                              ? TopDrive::pi_motor
-                              : TopDrive::prescribed_speed;
+        setup.top_drive = top_drive_from(kwargs["top_drive"], rig_name);
     if (given("axial")) setup.axial = flag_from(kwargs["axial"], "axial");
     if (given("hoisting"))
         setup.hoisting = choice_from(kwargs["hoisting"], "hoisting", "hook_speed", "hook_load") == "hook_speed"
@@ -436,6 +433,14 @@ Keywords
 )doc";
 
 }  // namespace
+
+TopDrive top_drive_from(py::handle value, const char* owner) {
+    const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
+    for (TopDrive d : {TopDrive::pi_motor, TopDrive::prescribed_speed})
+        if (s == top_drive_name(d)) return d;
+    throw InvalidParameter("top_drive", std::string(owner) + ": top_drive must be 'pi_motor' or 'prescribed_speed' "
+                                                             "(got " + std::string(py::repr(value)) + ")");
+}
 
 template <>
 py::object register_rig<event_string_rig>(py::module_& m) {

@@ -37,16 +37,6 @@ constexpr double default_switch_tolerance = 1e-10;
 enum class Treatment { captured, mixed };
 
 const char* treatment_name(Treatment t) { return t == Treatment::captured ? "captured" : "mixed"; }
-/// StringRig's names of the top drive's kinds (its keyword top_drive).
-const char* drive_name(TopDrive d) { return d == TopDrive::pi_motor ? "pi_motor" : "prescribed_speed"; }
-
-TopDrive drive_from(py::handle value) {
-    const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
-    if (s == "pi_motor") return TopDrive::pi_motor;
-    if (s == "prescribed_speed") return TopDrive::prescribed_speed;
-    throw InvalidParameter("top_drive", std::string(name) + ": top_drive must be 'pi_motor' or 'prescribed_speed' "
-                                            "(got " + std::string(py::repr(value)) + ")");
-}
 
 std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
 
@@ -188,7 +178,7 @@ py::dict extras_of(const BoundTorsionalString& r) {
     d["contact_radius"] = r.radius ? py::cast(*r.radius) : py::object(py::none());
     d["bit"] = r.bit ? py::cast(*r.bit) : py::object(py::none());
     d["treatment"] = treatment_name(r.treatment);
-    d["top_drive"] = drive_name(r.drive);
+    d["top_drive"] = top_drive_name(r.drive);
     d["slow_speed"] = r.slow_speed;
     d["switch_tolerance"] = r.switch_tolerance;
     return d;
@@ -233,7 +223,7 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
         bit = b.cast<NavarroLopezBit>();
     }
     if (given("treatment")) treatment = treatment_from(kwargs["treatment"]);
-    if (given("top_drive")) drive = drive_from(kwargs["top_drive"]);
+    if (given("top_drive")) drive = top_drive_from(kwargs["top_drive"], name);
     if (given("slow_speed")) slow_speed = real_from(kwargs["slow_speed"], "slow_speed");
     if (given("switch_tolerance")) switch_tolerance = real_from(kwargs["switch_tolerance"], "switch_tolerance");
     if (used != kwargs.size())
@@ -354,7 +344,7 @@ py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams
         .def_property_readonly("bit", [](const BoundTorsionalString& r) { return r.model.bit_law(); },
                                "The on-bottom bit's law (NavarroLopezBit).")
         .def_property_readonly("treatment", [](const BoundTorsionalString& r) { return treatment_name(r.treatment); })
-        .def_property_readonly("top_drive", [](const BoundTorsionalString& r) { return drive_name(r.drive); },
+        .def_property_readonly("top_drive", [](const BoundTorsionalString& r) { return top_drive_name(r.drive); },
                                "'pi_motor' or 'prescribed_speed' (StringRig's top_drive).")
         .def_property_readonly("bit_on_bottom", [](const BoundTorsionalString& r) { return r.model.bit_on_bottom(); })
         .def_property_readonly("period", [](const BoundTorsionalString&) { return py::none(); },

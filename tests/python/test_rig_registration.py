@@ -72,12 +72,17 @@ def test_the_string_models_declare_their_outputs_in_cpp():
     work = dict.fromkeys(("drive_work", "hoist_work", "excitation_work", "wall_friction_work", "damping_work",
                           "bit_work"), "J")
     assert outputs.declared_outputs(fs.StringRig) == outputs.RigOutputs(
-        "N m", {"speed_error_integral": "rad", **work}, {"theta": "rad", "omega": "rad/s", "u": "m", "v": "m/s"},
-        "stuck contacts")
+        "N m", {"speed_error_integral": "rad", **work},
+        {"theta": "rad", "omega": "rad/s", "u": "m", "v": "m/s", "slip_axis": "rad"}, "stuck contacts")
     if fs.HAS_EIGEN:
         assert outputs.declared_outputs(fs.TorsionalString) == outputs.RigOutputs("N m", {
             "bit_speed": "rad/s", "top_drive_speed": "rad/s", "motor_torque": "N m", "stuck_fraction": "1"},
             {}, "stuck contacts")
+    # a Leuven wall law's planar reference axis (axial runs) is an angle: its column says so in files and plots
+    leuven = fs.StringRig(fs.DrillString([fs.PipeSection(length=300.0)]), fs.Leuven(0.3, 0.4, 1e-3, 1e7),
+                          elements=3, axial=True, top_drive="prescribed_speed")
+    axes = [name for name in leuven.state_names if name.startswith("slip_axis_")]
+    assert axes and all(outputs.output_units(leuven)[name] == "rad" for name in axes)
     for cls in (fs.StringRig,) + ((fs.TorsionalString,) if fs.HAS_EIGEN else ()):
         assert all(unit and what for _, unit, what in cls.outputs)
         assert cls.outputs[0][:2] == ("friction_force", "N m")

@@ -45,7 +45,7 @@ struct StringRigParams {
     /// The Result's columns beside t, the wall law's states (numbered per node, theta_3 as dahl_deflection_3) and the
     /// bit law's (bit_*): a row name_* is a state per node 0 (top) .. N (bit); u_* and v_* only in axial runs,
     /// speed_error_integral only under the PI drive. The mode column counts the stuck wall contacts.
-    static constexpr std::array<RigOutput, 13> outputs() {
+    static constexpr std::array<RigOutput, 14> outputs() {
         return {{
             {"friction_force", "N m", "the total wall friction torque, sum of r_i times the circumferential friction"},
             {"speed_error_integral", "rad", "the PI drive's int (w_set - w_0) dt"},
@@ -53,11 +53,12 @@ struct StringRigParams {
             {"omega_*", "rad/s", "speed of node i"},
             {"u_*", "m", "axial displacement of node i (axial runs)"},
             {"v_*", "m/s", "axial speed of node i (axial runs)"},
+            {"slip_axis_*", "rad", "the planar wall contact's reference axis (axial runs, a law with reversal memory)"},
             {"drive_work", "J", "the top drive's work on node 0"},
             {"hoist_work", "J", "the hook's work on the top node (axial runs)"},
             {"excitation_work", "J", "the axial excitation's work"},
             {"wall_friction_work", "J", "the wall contacts' friction work"},
-            {"damping_work", "J", "the element dampers' work"},
+            {"damping_work", "J", "the dampers' work: the elements' beta k_e and k_t's at the nodes"},
             {"bit_work", "J", "the bit's work: drive + hoist + excitation = energy change + friction + damping + bit"},
             {"mode", "1", "stuck wall contacts (a count)"},
         }};
