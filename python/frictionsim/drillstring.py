@@ -149,10 +149,12 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
     What the keywords leave out is StringRig's default under every treatment (its table describes the string model:
     drive, gains, torque limit, mud, inclination, a step set-point, 20 elements), not the captured engine's own (A&S
     Well B's drive, a 60 degree hole, a 1 s set-point ramp, 200 elements), so "auto" changes how the contacts are
-    solved, never the string. One exception: the mixed treatment cannot carry a torque limit (its explicit update
-    would be a switch of its own at every step), so there StringRig's default limit (60 kN m) is left out unless
-    given, which the engine then refuses naming torque_limit: the captured and mixed strings' motor torque is
-    unlimited. One difference of lumping stays: a StringRig has no wall at node 0 (the top drive's), the captured
+    solved, not the string. One exception: StringRig's default torque limit (60 kN m) is not given to the captured
+    and mixed strings (with a limit the captured string's PI is explicit from each step's start, first order in h
+    where the unlimited one is implicit; the mixed one cannot carry a limit at all), so their motor torque is
+    unlimited unless ``torque_limit`` is given: the treatments differ only where the motor would pass 60 kN m. A
+    given ``torque_limit`` follows StringRig's rule (positive) under every treatment. One difference of lumping
+    stays: a StringRig has no wall at node 0 (the top drive's), the captured
     string has that node's half element's where the well is inclined at the top; they agree as N grows, and exactly
     in a well vertical at the top (the C++ exact_string builds the StringRig of a TorsionalString).
 
@@ -167,6 +169,11 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
         return StringRig(string, friction, **keywords)
     engine = _core.TorsionalString
     own = _keywords(engine)
+    limit = keywords.get("torque_limit")
+    if limit is not None and not float(limit) > 0.0:  # StringRig's rule; the captured string's 0 means "none"
+        raise InvalidParameterError(f"torque_limit: must be positive, StringRig's rule under every treatment (got "
+                                    f"{limit!r}; leave it out for an unlimited captured or mixed string)",
+                                    "torque_limit")
     captured: Dict[str, Any] = {}
     for key, value in keywords.items():
         name = SHARED.get(key, key)
@@ -178,9 +185,8 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
     for key, name in SHARED.items():
         if key in keywords or name in keywords or key not in exact_defaults:
             continue
-        if name == "torque_limit" and (chosen == "mixed" or str(keywords.get("top_drive", "")).endswith(
-                "prescribed_speed")):
-            continue  # not carried with the exact bit (see above); a held speed takes whatever torque it needs
+        if name == "torque_limit":
+            continue  # left out unless given (see above)
         captured[name] = exact_defaults[key]
     captured.update(wall_coefficients(friction))
     return engine(string, treatment=chosen, **captured)

@@ -48,9 +48,8 @@ BY_HAND = dict(elements=60, inclination=1.0, mud_density=1200.0, speed_setpoint=
 
 
 def _by_hand_limit(treatment: str) -> dict:
-    """StringRig's default torque limit (60 kN m), which string_model gives the captured string (the mixed one
-    cannot carry a limit: left out there)."""
-    return {} if treatment == "mixed" else dict(torque_limit=6e4)
+    """StringRig's default torque limit (60 kN m) is not given to the time-stepped treatments: none by hand."""
+    return {}
 
 
 def _with(text: str, old: str, new: str) -> str:
@@ -200,8 +199,14 @@ def test_one_string_model_builds_each_treatment_and_counts_stuck_walls_alike():
         for key, name in ds.SHARED.items():
             if key in {p.name for p in fs.StringRig.parameters} and name != "torque_limit":
                 assert getattr(bare, name) == getattr(bare_exact, key), key
-        assert bare.torque_limit == (0.0 if treatment == "mixed" else bare_exact.torque_limit)
+        assert bare.torque_limit == 0.0  # StringRig's default limit left out: an unlimited motor (see string_model)
     assert bare_exact.torque_limit == 6e4
+    # a given limit is StringRig's under every treatment: positive (the captured string's own 0 means "none")
+    assert ds.string_model(string, walls, treatment="captured", torque_limit=7e3).torque_limit == 7e3
+    for treatment in ("exact", "captured", "mixed"):
+        with pytest.raises(fs.InvalidParameterError) as error:
+            ds.string_model(string, walls, treatment=treatment, torque_limit=0.0)
+        assert error.value.parameter == "torque_limit"
     with pytest.raises(fs.InvalidParameterError) as error:
         ds.string_model(string, walls, treatment="captured", end_mass=1e3, **WELL)  # StringRig's axial BHA mass
     assert error.value.parameter == "end_mass"
