@@ -157,7 +157,8 @@ void run_string(const Law& law, Bytes& in) {
 }
 
 /// A time-stepping model of EngineRigs: a small TorsionalString (1-16 elements, sections and parameters from their
-/// tables), the bit's treatment, Moreau-Jean or the explicit projection with a drawn step; or a rig of EngineRigs
+/// tables), the bit's treatment, Moreau-Jean or the explicit projection with a drawn step, the PI or a prescribed
+/// speed, the active set or projected Gauss-Seidel; or a rig of EngineRigs
 /// built from its table alone (a Navarro-Lopez string) on an ODE method.
 void run_field(Bytes& in) {
     static_assert(count_rigs<RigConstruction::time_stepping>(EngineRigs{}) == 1,
@@ -191,6 +192,10 @@ void run_field(Bytes& in) {
         o.max_output_rows = 5000;
         o.timeout = 2.0;
         const double t_end = in.byte() & 1 ? in.number() : 0.05;
+        // read last, so the seeds made before keep their meaning (past the end a byte reads 0: the defaults)
+        const std::uint8_t drive = in.byte();
+        if (drive & 1) model.set_top_drive(TopDrive::prescribed_speed);
+        if (drive & 2) o.contact_solver = ContactSolverChoice::projected_gauss_seidel;
         require_finite(simulate(model, t_end, o));
     });
 }
