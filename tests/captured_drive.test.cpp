@@ -9,35 +9,17 @@
 #include <vector>
 
 #include "catch.hpp"
+#include "convergence.hpp"
 #include "frictionsim/simulate.hpp"
 #include "frictionsim/string/exact_string.hpp"
 #include "frictionsim/string/torsional_string.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::fitted_order;
+using frictionsim::test::grid;
 
 namespace {
-
-std::vector<double> grid(double t_end, double dt) {
-    std::vector<double> t;
-    const long steps = std::lround(t_end / dt);
-    for (long k = 0; k <= steps; ++k) t.push_back(dt * static_cast<double>(k));
-    return t;
-}
-
-/// The least-squares slope of log(error) against log(x): the measured order.
-double fitted_order(const std::vector<double>& x, const std::vector<double>& error) {
-    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-    const double n = static_cast<double>(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const double lx = std::log(x[i]), ly = std::log(error[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 /// tests/mixed_treatment.test.cpp's [treatments] string: 1000 m of 5" pipe, vertical to 200 m then building to 60
 /// degrees at 500 m (node 0 has no wall, as in StringRig), Coulomb walls mu_s 0.3 (kinetic 0.6 of it) at every node

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "catch.hpp"
+#include "convergence.hpp"
 #include "frictionsim/string/string_rig.hpp"
 #include "frictionsim/string/torsional_string.hpp"
 #include "frictionsim/string/treatment.hpp"
@@ -22,6 +23,8 @@
 #include "rejection.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::fitted_order;
+using frictionsim::test::grid;
 
 namespace {
 
@@ -57,13 +60,6 @@ struct Case {
     Rig rig(const TorsionalString& ts) const { return exact_string_on_bottom(ts); }
 };
 
-std::vector<double> grid(double t_end, double dt) {
-    std::vector<double> t;
-    const long steps = std::lround(t_end / dt);
-    for (long k = 0; k <= steps; ++k) t.push_back(dt * static_cast<double>(k));
-    return t;
-}
-
 std::vector<double> bit_switch_times(const Result& r) {
     std::vector<double> t;
     for (const Event& e : r.events)
@@ -85,20 +81,6 @@ double switch_error(const std::vector<double>& a, const std::vector<double>& b, 
     double e = 0.0;
     for (std::size_t k = 0; k < count; ++k) e = std::max(e, std::abs(a[k] - b[k]));
     return e;
-}
-
-/// The least-squares slope of log(error) against log(x): the measured order.
-double fitted_order(const std::vector<double>& x, const std::vector<double>& error) {
-    double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
-    const double n = static_cast<double>(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const double lx = std::log(x[i]), ly = std::log(error[i]);
-        sx += lx;
-        sy += ly;
-        sxx += lx * lx;
-        sxy += lx * ly;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 struct Convergence {

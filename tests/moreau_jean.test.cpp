@@ -18,9 +18,11 @@
 #include <frictionsim/eigen/one_step_contact.hpp>  // ProjectedGaussSeidel, the ContactSolver concept
 
 #include "catch.hpp"
+#include "convergence.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::fitted_order;
 
 namespace {
 
@@ -91,20 +93,6 @@ BlockRun run_block(const SpringBlock& b, double h, double theta, double t_end,
     for (const ContactEvent& e : mj.events())
         if (e.kind == ContactEvent::Kind::stick_to_slip) out.breakaways.push_back(e.time);
     return out;
-}
-
-/// Least-squares slope of log(error) against log(h).
-double fitted_order(const std::vector<double>& h, const std::vector<double>& error) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    const double n = static_cast<double>(h.size());
-    for (std::size_t i = 0; i < h.size(); ++i) {
-        const double x = std::log(h[i]), y = std::log(error[i]);
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-    }
-    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 }  // namespace
