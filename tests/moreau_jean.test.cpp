@@ -460,7 +460,8 @@ TEST_CASE("Moreau-Jean: on a chain the piecewise-updated solve gives the general
     // values change) against the banded LDL^T path on the same system: the same modes at every step, the same
     // active-set iterations and factorisations, velocities and forces to round-off. With a budget of 4 iterations
     // the third changes the worst contact alone (Murty) and runs whole-chain passes: both paths take those steps
-    // alike and stop at the same step (a fourth iteration still violated: measured at 1.57 s).
+    // alike; the single pivots go on past the 4 (up to 2 per contact more), so neither stops where a budget of 4
+    // alone stopped them (a fourth iteration still violated at 1.57 s) and both settle every step.
     const int n = 60;
     for (int budget : {200, 4}) {
         MoreauJeanOptions o;
@@ -489,16 +490,12 @@ TEST_CASE("Moreau-Jean: on a chain the piecewise-updated solve gives the general
             worst_v = std::max(worst_v, (chain.velocities() - band.velocities()).lpNorm<Eigen::Infinity>());
             worst_r = std::max(worst_r, (chain.contact_forces() - band.contact_forces()).lpNorm<Eigen::Infinity>());
         }
-        INFO("budget " << budget << ": t = " << chain.time() << ", max |dv| " << worst_v << ", max |dr| " << worst_r);
-        CHECK(chain_stopped == band_stopped);
+        INFO("budget " << budget << ": t = " << chain.time() << ", max |dv| " << worst_v << ", max |dr| " << worst_r
+                       << ", stopped at " << chain_stop << " / " << band_stop);
+        CHECK(!chain_stopped);
+        CHECK(!band_stopped);
         CHECK(same_modes);
-        if (chain_stopped || band_stopped) {
-            CHECK(chain_stop == band_stop);
-            CHECK(chain_stop > 1.0);
-            CHECK(worst_v < 1e-12);
-            continue;
-        }
-        CHECK(budget == 200);
+        CHECK(chain.time() > 2.9);  // all 300 steps
         CHECK(worst_v < 1e-12);  // speeds ~0.5 m/s
         CHECK(worst_r < 1e-10);  // forces ~1 N
         const MoreauJean::Statistics& a = chain.statistics();
