@@ -81,6 +81,36 @@ StringRig<Law, VelocityWeakeningBit> stick_slip_rig(std::size_t n, Law law = Cou
                                                 VelocityWeakeningBit(NavarroLopezBit(b), 6e4));
 }
 
+/// 800 m of pipe at 60 degrees moving axially and turning, Coulomb walls (0.2 / 0.3) in planar stick-slip, a hook
+/// load a little below the along-hole buoyed weight (1e5 against 1.1e5 N: the agitator at node 4 makes it creep),
+/// the PI drive and the velocity-weakening bit on bottom.
+StringRigParams planar_stick_slip_params() {
+    StringRigParams p;
+    p.inclination = pi / 3.0;
+    p.damping_time = 5e-3;
+    p.surface_speed = 0.2;
+    p.top_drive_inertia = 300.0;
+    p.proportional_gain = 3e3;
+    p.integral_gain = 1e3;
+    p.excitation_amplitude = 6e4;
+    p.excitation_frequency = 3.0;
+    p.end_mass = 5e3;
+    p.hook_load = 1e5;
+    return p;
+}
+
+StringRig<Coulomb, VelocityWeakeningBit> planar_stick_slip_rig(const StringRigParams& p) {
+    StringRigSetup s;
+    s.elements = 8;
+    s.axial = true;
+    s.hoisting = Hoisting::hook_load;
+    s.excitation_node = 4;
+    NavarroLopezBit::Params b;
+    b.viscous_damping = 0.0;
+    return StringRig<Coulomb, VelocityWeakeningBit>(pipe_string(800.0), p, s, Coulomb(0.2, 0.3),
+                                                    VelocityWeakeningBit(NavarroLopezBit(b), 2e4));
+}
+
 }  // namespace
 
 TEST_CASE("string rig: bad set-ups name the parameter", "[string_rig][validation]") {
@@ -694,26 +724,7 @@ TEST_CASE("string rig: energy balance with axial motion, hook load, an agitator 
           "[string_rig]") {
     // torsion and axial motion: Coulomb walls act against the resultant sliding velocity and stick in the plane;
     // gravity, the hook load and an axial excitation at node 4 do work too
-    StringRigParams p;
-    p.inclination = pi / 3.0;
-    p.damping_time = 5e-3;
-    p.surface_speed = 0.2;
-    p.top_drive_inertia = 300.0;
-    p.proportional_gain = 3e3;
-    p.integral_gain = 1e3;
-    p.excitation_amplitude = 6e4;
-    p.excitation_frequency = 3.0;
-    p.end_mass = 5e3;
-    StringRigSetup s;
-    s.elements = 8;
-    s.axial = true;
-    s.hoisting = Hoisting::hook_load;
-    s.excitation_node = 4;
-    NavarroLopezBit::Params b;
-    b.viscous_damping = 0.0;
-    p.hook_load = 1e5;  // a little below the along-hole buoyed weight (1.1e5 N): the agitator makes it creep
-    const StringRig<Coulomb, VelocityWeakeningBit> rig(pipe_string(800.0), p, s, Coulomb(0.2, 0.3),
-                                                       VelocityWeakeningBit(NavarroLopezBit(b), 2e4));
+    const StringRig<Coulomb, VelocityWeakeningBit> rig = planar_stick_slip_rig(planar_stick_slip_params());
     SolverOptions o;
     o.rtol = 1e-10;
     o.atol = 1e-10;
@@ -1518,28 +1529,10 @@ TEST_CASE("string rig: energy balances close with k_t and a ramped set speed (st
         CHECK(worst_imbalance(rig, r) < 1e-7);
     }
     SECTION("axial motion and planar stick-slip with k_t, a hook load and an agitator") {
-        StringRigParams p;
-        p.inclination = pi / 3.0;
-        p.damping_time = 5e-3;
+        StringRigParams p = planar_stick_slip_params();
         p.damping_rate = 0.05;
         p.setpoint_time_constant = 0.5;
-        p.surface_speed = 0.2;
-        p.top_drive_inertia = 300.0;
-        p.proportional_gain = 3e3;
-        p.integral_gain = 1e3;
-        p.excitation_amplitude = 6e4;
-        p.excitation_frequency = 3.0;
-        p.end_mass = 5e3;
-        p.hook_load = 1e5;
-        StringRigSetup s;
-        s.elements = 8;
-        s.axial = true;
-        s.hoisting = Hoisting::hook_load;
-        s.excitation_node = 4;
-        NavarroLopezBit::Params b;
-        b.viscous_damping = 0.0;
-        using Rig = StringRig<Coulomb, VelocityWeakeningBit>;
-        const Rig rig(pipe_string(800.0), p, s, Coulomb(0.2, 0.3), VelocityWeakeningBit(NavarroLopezBit(b), 2e4));
+        const auto rig = planar_stick_slip_rig(p);
         o.output_times = grid(8.0, 0.5);
         const Result r = simulate(rig, 8.0, o);
         REQUIRE(r.completed);
