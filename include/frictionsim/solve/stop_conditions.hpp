@@ -113,7 +113,7 @@ public:
 
     static constexpr std::size_t npos = static_cast<std::size_t>(-1);
 
-private:
+    /// A level as the log writes it ("5", "0.25"): trailing zeros dropped.
     static std::string number(double v) {
         std::string s = std::to_string(v);
         while (s.size() > 1 && s.back() == '0') s.pop_back();
@@ -121,6 +121,7 @@ private:
         return s;
     }
 
+private:
     /// The root of g on [a, b] (g(a), g(b) of opposite signs or g(b) = 0) by Illinois false position.
     template <class G>
     static double locate(const G& g, double a, double ga, double b, double gb) {

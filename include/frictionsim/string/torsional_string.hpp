@@ -207,6 +207,8 @@ public:
 
     const TorsionalStringParams& params() const { return p_; }
     const DrillString& string() const { return string_; }
+    /// The survey the walls' bounds read (none: the straight well of params().inclination).
+    const std::optional<Survey>& survey() const { return survey_; }
     const LumpedString& lumped() const { return lumped_; }
     std::size_t nodes() const { return lumped_.node_inertia.size(); }
     /// Static torque bound of each node's wall contact [N m] (kinetic: kinetic_ratio times it).
