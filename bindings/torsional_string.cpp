@@ -1,6 +1,8 @@
 // The Aarsnes-Shor torsional string for Python (include/frictionsim/string/torsional_string.hpp): fs.TorsionalString,
-// a lumped string whose hundreds of wall contacts are captured by Moreau-Jean time-stepping (no event per switch),
-// the bit on bottom captured with them or its switches located exactly ("mixed"); the closed forms of A&S sec. 4;
+// the one string model (string/string_model.hpp's StringModel): a lumped string whose wall contacts are captured by
+// Moreau-Jean time-stepping (no event per switch), the bit on bottom captured with them or its switches located
+// exactly ("mixed"), or every switch located on the event-driven StringRig ("exact"); "auto" by the measured rule;
+// the same Result columns under every treatment; the closed forms of A&S sec. 4;
 // the Well B preset fs.aarsnes_shor_well_b. Its entry of EngineRigs (time_stepping_rig) and this binding need Eigen
 // (FRICTIONSIM_EIGEN): without it the list has no such entry and nothing is registered.
 #include <pybind11/numpy.h>
@@ -16,7 +18,10 @@
 
 #if defined(FRICTIONSIM_EIGEN) && FRICTIONSIM_EIGEN
 #include <frictionsim/solve/time_stepping.hpp>
+#include <frictionsim/string/string_model.hpp>
 #include <frictionsim/string/torsional_string.hpp>
+
+#include "simulation.hpp"
 #endif
 
 namespace frictionsim::python {
@@ -32,21 +37,19 @@ constexpr long max_elements = 100000;
 constexpr long default_elements = 200;
 constexpr double default_switch_tolerance = 1e-10;
 
-/// How the string's contacts are treated: every one captured by the time-stepping, or the bit's stick and slip
-/// located exactly with the walls still captured ("mixed"). Every contact exact is the event-driven fs.StringRig.
-enum class Treatment { captured, mixed };
-
-const char* treatment_name(Treatment t) { return t == Treatment::captured ? "captured" : "mixed"; }
+/// The treatment as given: one of StringTreatment's, or none for "auto" (the measured rule, resolved once the
+/// string is lumped).
+using GivenTreatment = std::optional<StringTreatment>;
 
 std::string type_name(py::handle value) { return py::str(py::type::of(value).attr("__name__")); }
 
-Treatment treatment_from(py::handle value) {
+GivenTreatment treatment_from(py::handle value) {
     const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
-    if (s == "captured") return Treatment::captured;
-    if (s == "mixed") return Treatment::mixed;
-    const std::string hint = s == "exact" ? " (every contact exact, located as events, is fs.StringRig)" : "";
-    throw InvalidParameter("treatment", std::string(name) + ": treatment must be 'captured' or 'mixed' (got " +
-                                            std::string(py::repr(value)) + ")" + hint);
+    if (s == "auto") return std::nullopt;
+    for (StringTreatment t : {StringTreatment::captured, StringTreatment::mixed, StringTreatment::exact})
+        if (s == treatment_name(t)) return t;
+    throw InvalidParameter("treatment", std::string(name) + ": treatment must be 'captured', 'mixed', 'exact' or "
+                                            "'auto' (got " + std::string(py::repr(value)) + ")");
 }
 
 double real_from(py::handle value, const char* keyword) {
@@ -130,33 +133,37 @@ struct BoundTorsionalString {
     GivenSurvey survey;
     std::optional<std::vector<double>> radius;  ///< as given; none: each section's OD / 2
     std::optional<NavarroLopezBit> bit;         ///< as given; none: the default NavarroLopezBit
-    Treatment treatment;
+    StringTreatment treatment;                  ///< "auto" resolved by the measured rule
     TopDrive drive;
     double slow_speed, switch_tolerance;
-    TorsionalString model;
+    TorsionalString model;              ///< the description (its properties and closed forms)
+    std::optional<StringModel> treated;  ///< what a run runs: the description under its treatment
 
     BoundTorsionalString(DrillString s, const TorsionalStringParams& p, std::size_t n, GivenSurvey sv,
-                         std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, Treatment t,
+                         std::optional<std::vector<double>> r, std::optional<NavarroLopezBit> b, GivenTreatment t,
                          TopDrive d, double slow, double tolerance)
         : string(std::move(s)), params(p), elements(n), survey(std::move(sv)), radius(std::move(r)), bit(std::move(b)),
-          treatment(t), drive(d), slow_speed(slow), switch_tolerance(tolerance),
-          model(checked(string, survey.survey, treatment, params, elements), params, elements, survey.survey,
+          treatment(t.value_or(StringTreatment::captured)), drive(d), slow_speed(slow), switch_tolerance(tolerance),
+          model(checked(string, survey.survey, t, params, elements), params, elements, survey.survey,
                 radius.value_or(std::vector<double>{}), bit.value_or(NavarroLopezBit{})) {
-        model.set_bit_treatment(t == Treatment::mixed ? BitTreatment::exact : BitTreatment::captured, tolerance);
         model.set_slow_speed(slow);
         model.set_top_drive(d);
+        if (!t) treatment = automatic_treatment(model.contact_count(), model.bit_on_bottom());
+        treated.emplace(model, treatment, tolerance);  // refuses what the treatment cannot carry, naming it
+        model.set_bit_treatment(treatment == StringTreatment::mixed ? BitTreatment::exact : BitTreatment::captured,
+                                tolerance);
     }
 
 private:
     /// What the C++ constructor does not check: a survey that ends above the bit, a treatment without a bit.
-    static const DrillString& checked(const DrillString& s, const std::optional<Survey>& survey, Treatment t,
+    static const DrillString& checked(const DrillString& s, const std::optional<Survey>& survey, GivenTreatment t,
                                       const TorsionalStringParams& p, std::size_t) {
         if (survey && survey->last_depth() < s.length()) {
             const std::string rule = "reaching the bit (its last measured depth >= the string's length, " +
                                      format_double(s.length()) + " m; last given)";
             detail::reject(name, "survey", rule.c_str(), survey->last_depth());
         }
-        if (t == Treatment::mixed && !(p.weight_on_bit > 0.0))
+        if (t == StringTreatment::mixed && !(p.weight_on_bit > 0.0))
             throw InvalidParameter("treatment", std::string(name) + ": treatment 'mixed' locates the bit's stick "
                                                 "and slip, and this string's bit is off bottom (weight_on_bit = 0): "
                                                 "use 'captured', or put the bit on bottom");
@@ -194,7 +201,7 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
     GivenSurvey survey;
     std::optional<std::vector<double>> radius;
     std::optional<NavarroLopezBit> bit;
-    Treatment treatment = Treatment::captured;
+    GivenTreatment treatment = StringTreatment::captured;
     TopDrive drive = TopDrive::pi_motor;
     double slow_speed = 0.0, switch_tolerance = default_switch_tolerance;
     const auto given = [&](const char* key) {
@@ -240,13 +247,17 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
                                 std::move(radius), std::move(bit), treatment, drive, slow_speed, switch_tolerance);
 }
 
-/// simulate_variant's run for a time-stepping model: the GIL released, Ctrl-C polled between steps.
+/// simulate_variant's run for the string model: the GIL released, Ctrl-C polled between steps; the exact treatment
+/// on the integrators this extension has (simulate_built_in).
 std::shared_ptr<Result> run_string(const BoundTorsionalString& r, double t_end, const SolverOptions& options, double t_start) {
     SolverOptions polled = options;
     polled.interrupt = &python_signal_raised;
     try {
         py::gil_scoped_release release;
-        return std::make_shared<Result>(simulate_time_stepping(r.model, t_end, polled, t_start));
+        return std::make_shared<Result>(r.treated->run(
+            t_end, polled, t_start, [](const auto& rig, double end, const SolverOptions& o, double start) {
+                return simulate_built_in(rig, end, o, start);
+            }));
     } catch (const Interrupted&) {
         raise_pending_python_error();
     }
@@ -287,9 +298,15 @@ contact_radius : sequence of float, optional
     r_o per section [m]; default each section's OD / 2.
 bit : NavarroLopezBit, optional
     The on-bottom bit's law (used when weight_on_bit > 0); default NavarroLopezBit().
-treatment : {"captured", "mixed"}
-    "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
-    located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+treatment : {"captured", "mixed", "exact", "auto"}
+    "captured": every contact, the bit's too, captured by the time-stepping (method "moreau_jean" or
+    "explicit_projection", its "automatic"); "mixed": the bit's stick and slip located exactly (a lumped switch of
+    the run, restarted there), the walls captured; needs the bit on bottom and no torque_limit; "exact": every
+    contact's stick and slip located as an event on the event-driven StringRig of the same string (any
+    event-driven method; no stick band, sampled PI, bit_torque, or wall at node 0: vertical at the top); "auto":
+    the measured rule (fs.automatic_treatment: exact up to 30 wall contacts, mixed up to 300 on bottom, captured
+    beyond). The Result has the same columns under every treatment; under "exact" its events are every located
+    switch (the time-stepping logs the bit's), and a stop condition reads bit_speed or top_drive_speed.
 top_drive : {"pi_motor", "prescribed_speed"}
     As fs.StringRig's: the PI motor (torque_limit: its limit, 0 none), or node 0 held at the set-point speed
     (no controller: control_period and torque_limit must be 0).
@@ -392,7 +409,7 @@ py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams
             for (auto item : extras_of(r)) {
                 const std::string key = py::str(item.first);
                 if (item.second.is_none()) continue;
-                if (key == "treatment" && r.treatment == Treatment::captured) continue;
+                if (key == "treatment" && r.treatment == StringTreatment::captured) continue;
                 if (key == "top_drive" && r.drive == TopDrive::pi_motor) continue;
                 if (key == "slow_speed" && r.slow_speed == 0.0) continue;
                 if (key == "switch_tolerance" && r.switch_tolerance == default_switch_tolerance) continue;

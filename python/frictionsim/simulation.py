@@ -55,8 +55,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     Parameters
     ----------
     rig : AxialVibrationRig, KinematicRig, TorsionalRig, StringRig, NavarroLopez2Dof, NavarroLopez4Dof or TorsionalString
-        TorsionalString is a time-stepping model: it runs by "moreau_jean" (its "automatic") or
-        "explicit_projection" with a fixed ``step``; the others by the ODE methods, every switch located.
+        A TorsionalString under treatment "captured" or "mixed" is a time-stepping model: it runs by
+        "moreau_jean" (its "automatic") or "explicit_projection" with a fixed ``step``; under "exact", and the
+        other rigs always, by the ODE methods, every switch located.
     t_end : float, s
     method : {"automatic", "dormand_prince", "cvode_bdf", "cvode_adams", "rosenbrock", "moreau_jean", "explicit_projection"}
         "automatic" picks CVODE BDF for stiff laws (LuGre, ElastoPlastic) and Dormand-Prince 5(4) otherwise
@@ -193,8 +194,9 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
 
 
 def _is_time_stepping(rig) -> bool:
+    """A TorsionalString under a time-stepping treatment (captured, mixed); under "exact" it runs event-driven."""
     field = getattr(_core, "TorsionalString", None)  # bound only with Eigen (HAS_EIGEN)
-    return field is not None and isinstance(rig, field)
+    return field is not None and isinstance(rig, field) and rig.treatment != "exact"
 
 
 def _stop_conditions(events) -> List["_core.StopCondition"]:

@@ -23,6 +23,7 @@
 
 #include <frictionsim/rigs/rigs.hpp>
 #include <frictionsim/simulate.hpp>
+#include <frictionsim/string/string_model.hpp>
 #include <frictionsim/string/torsional_string.hpp>
 
 using namespace frictionsim;
@@ -158,7 +159,7 @@ void run_string(const Law& law, Bytes& in) {
 
 /// A time-stepping model of EngineRigs: a small TorsionalString (1-16 elements, sections and parameters from their
 /// tables), the bit's treatment, Moreau-Jean or the explicit projection with a drawn step, the PI or a prescribed
-/// speed, the active set or projected Gauss-Seidel; or a rig of EngineRigs
+/// speed, the active set or projected Gauss-Seidel, or the string model's exact treatment; or a rig of EngineRigs
 /// built from its table alone (a Navarro-Lopez string) on an ODE method.
 void run_field(Bytes& in) {
     static_assert(count_rigs<RigConstruction::time_stepping>(EngineRigs{}) == 1,
@@ -196,6 +197,16 @@ void run_field(Bytes& in) {
         const std::uint8_t drive = in.byte();
         if (drive & 1) model.set_top_drive(TopDrive::prescribed_speed);
         if (drive & 2) o.contact_solver = ContactSolverChoice::projected_gauss_seidel;
+        // then the string model's exact treatment (string/string_model.hpp: the StringRig of the same string on an
+        // ODE method, its rows in the string's columns)
+        if (in.byte() & 1) {
+            const StringModel exact(model, StringTreatment::exact);
+            SolverOptions e;
+            e.max_steps = o.max_steps;
+            e.max_output_rows = o.max_output_rows;
+            e.timeout = o.timeout;
+            return require_finite(simulate(exact, t_end, e));
+        }
         require_finite(simulate(model, t_end, o));
     });
 }
