@@ -62,6 +62,7 @@
 #include "../bits/bit_rock.hpp"
 #include "sections.hpp"
 #include "string_rig_params.hpp"
+#include "top_drive.hpp"
 
 namespace frictionsim {
 
@@ -293,20 +294,16 @@ public:
     /// A&S eq 40: t_p = t_bu + t_fp (A&S: "slightly" above the observed period).
     double period_estimate() const { return build_up_time() + fundamental_period(); }
 
-    /// The set-point omega_SP(t) and its angle int_0^t omega_SP (continuous ramp).
-    double setpoint_speed(double t) const {
-        const double T = p_.setpoint_time_constant;
-        return T > 0.0 ? p_.speed_setpoint * (1.0 - std::exp(-t / T)) : p_.speed_setpoint;
-    }
+    /// The set-point omega_SP(t) = omega_SP (1 - exp(-t / T)) (StringRig's SetpointRamp) and its angle
+    /// int_0^t omega_SP.
+    SetpointRamp setpoint_ramp() const { return {p_.speed_setpoint, p_.setpoint_time_constant}; }
+    double setpoint_speed(double t) const { return setpoint_ramp().at(t); }
     double setpoint_angle(double t) const {
         const double T = p_.setpoint_time_constant;
         return T > 0.0 ? p_.speed_setpoint * (t - T * (1.0 - std::exp(-t / T))) : p_.speed_setpoint * t;
     }
     /// d omega_SP / dt (0 for a step, past t = 0).
-    double setpoint_acceleration(double t) const {
-        const double T = p_.setpoint_time_constant;
-        return T > 0.0 ? p_.speed_setpoint / T * std::exp(-t / T) : 0.0;
-    }
+    double setpoint_acceleration(double t) const { return setpoint_ramp().rate(t); }
 
     /// How node 0 turns: the PI motor (TopDrive::pi_motor, the default; with torque_limit > 0 PiTopDrive's limit
     /// and anti-windup) or a prescribed speed omega_SP(t) (TopDrive::prescribed_speed, StringRig's PrescribedSpeed:
