@@ -96,9 +96,15 @@ std::vector<double> positions(const Survey& s, double (Survey::*coordinate)(std:
     return out;
 }
 
+/// The constructor call that rebuilds the survey bit for bit (the stations in SI: m, rad).
 std::string survey_repr(const Survey& s) {
-    return "Survey(" + std::to_string(s.size()) + " stations, measured depth " + format_double(s.first_depth()) +
-           " to " + format_double(s.last_depth()) + " m)";
+    const auto list = [&](double SurveyStation::*member) {
+        std::string out = "[";
+        for (std::size_t i = 0; i < s.size(); ++i) out += (i ? ", " : "") + format_double(s.stations()[i].*member);
+        return out + "]";
+    };
+    return "Survey(" + list(&SurveyStation::measured_depth) + ", " + list(&SurveyStation::inclination) + ", " +
+           list(&SurveyStation::azimuth) + ")";
 }
 
 Operation operation_from(py::handle value) {

@@ -73,10 +73,12 @@ def test_auto_follows_the_measured_rule_and_survives_repr_and_pickle():
     assert _string("auto", elements=100).treatment == "captured"  # off bottom beyond 30
     assert _string("auto", elements=100, weight_on_bit=6e4).treatment == "mixed"
     assert _string("auto", elements=400, weight_on_bit=6e4).treatment == "captured"
-    # the survey as (measured_depth, inclination): an fs.Survey's repr is a summary, not a constructor call
-    pair = ([0.0, 200.0, 500.0, 1000.0], [0.0, 0.0, np.pi / 3.0, np.pi / 3.0])
+    # an fs.Survey's repr is the constructor call that rebuilds it bit for bit, so the string's repr rebuilds it too
+    survey = eval(repr(SURVEY), vars(fs))
+    for name in ("measured_depth", "inclination", "azimuth"):
+        np.testing.assert_array_equal(getattr(survey, name), getattr(SURVEY, name))
     for treatment in ("exact", "captured", "mixed"):
-        string = _string(treatment, weight_on_bit=6e4 if treatment == "mixed" else 0.0, survey=pair)
+        string = _string(treatment, weight_on_bit=6e4 if treatment == "mixed" else 0.0)
         assert string.treatment == treatment
         for copy in (pickle.loads(pickle.dumps(string)), eval(repr(string), vars(fs))):
             assert copy.treatment == treatment and repr(copy) == repr(string)
