@@ -2735,9 +2735,15 @@ class TorsionalString:
         r_o per section [m]; default each section's OD / 2.
     bit : NavarroLopezBit, optional
         The on-bottom bit's law (used when weight_on_bit > 0); default NavarroLopezBit().
-    treatment : {"captured", "mixed"}
-        "captured": every contact, the bit's too, captured by the time-stepping; "mixed": the bit's stick and slip
-        located exactly (a lumped switch of the run, restarted there), the walls captured; needs the bit on bottom.
+    treatment : {"captured", "mixed", "exact", "auto"}
+        "captured": every contact, the bit's too, captured by the time-stepping (method "moreau_jean" or
+        "explicit_projection", its "automatic"); "mixed": the bit's stick and slip located exactly (a lumped switch of
+        the run, restarted there), the walls captured; needs the bit on bottom and no torque_limit; "exact": every
+        contact's stick and slip located as an event on the event-driven StringRig of the same string (any
+        event-driven method; no stick band, sampled PI, bit_torque, or wall at node 0: vertical at the top); "auto":
+        the measured rule (fs.automatic_treatment: exact up to 30 wall contacts, mixed up to 300 on bottom, captured
+        beyond). The Result has the same columns under every treatment; under "exact" its events are every located
+        switch (the time-stepping logs the bit's), and a stop condition reads bit_speed or top_drive_speed.
     top_drive : {"pi_motor", "prescribed_speed"}
         As fs.StringRig's: the PI motor (torque_limit: its limit, 0 none), or node 0 held at the set-point speed
         (no controller: control_period and torque_limit must be 0).
