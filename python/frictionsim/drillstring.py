@@ -192,14 +192,15 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
     return engine(string, treatment=chosen, **captured)
 
 
-def _time_stepped(rig) -> bool:
-    """A TorsionalString (Moreau-Jean, contacts captured): its Result's columns are its outputs, not node states."""
+def _string_columns(rig) -> bool:
+    """A TorsionalString (under any treatment): its Result's columns are the string's outputs (bit_speed,
+    top_drive_speed, motor_torque, stuck_fraction), not a StringRig's node states."""
     return not hasattr(rig, "omega_index")
 
 
 def set_speed(rig) -> float:
     """The set surface speed w_set [rad/s]: a StringRig's surface_speed, a TorsionalString's speed_setpoint."""
-    return float(rig.speed_setpoint if _time_stepped(rig) else rig.surface_speed)
+    return float(rig.speed_setpoint if _string_columns(rig) else rig.surface_speed)
 
 
 def wall_contacts(rig) -> int:
@@ -210,14 +211,14 @@ def wall_contacts(rig) -> int:
 
 def bit_speed(rig, result: Result) -> np.ndarray:
     """Bit speed [rad/s] (node N's) at each row of ``result`` (of a StringRig or a TorsionalString)."""
-    if _time_stepped(rig):
+    if _string_columns(rig):
         return np.asarray(result["bit_speed"])
     return result.states[:, rig.omega_index(rig.elements)]
 
 
 def surface_speed(rig, result: Result) -> np.ndarray:
     """Surface (top-drive) speed [rad/s] (node 0's) at each row."""
-    if _time_stepped(rig):
+    if _string_columns(rig):
         return np.asarray(result["top_drive_speed"])
     return result.states[:, rig.omega_index(0)]
 
@@ -241,7 +242,7 @@ def _states_at_rest(rig: StringRig, result: Result) -> np.ndarray:
 def surface_torque(rig: StringRig, result: Result) -> np.ndarray:
     """Torque the surface applies [N m] at each row: the motor's under PI control (limit included), what holds
     the prescribed speed otherwise (a TorsionalString: its PI motor's torque)."""
-    if _time_stepped(rig):
+    if _string_columns(rig):
         return np.asarray(result["motor_torque"])
     return rig.surface_torque(result.t, _states_at_rest(rig, result))
 
@@ -298,7 +299,7 @@ def stick_slip(rig: StringRig, result: Result, transient: float = 0.0) -> StickS
     dt = np.diff(t)
     span = t[-1] - t[0]
     mean = float(np.sum(0.5 * (bit[1:] + bit[:-1]) * dt) / span)
-    at_rest = np.abs(bit) <= (float(rig.slow_speed) if _time_stepped(rig) else 0.0)  # A&S count below slow_speed
+    at_rest = np.abs(bit) <= (float(rig.slow_speed) if _string_columns(rig) else 0.0)  # A&S count below slow_speed
     stuck = at_rest[1:] & at_rest[:-1]
     stuck_fraction = float(np.sum(dt[stuck]) / span)
     return StickSlip(peak_ratio=float(np.max(bit) / w_set), mean_ratio=mean / w_set, stuck_fraction=stuck_fraction,
