@@ -34,7 +34,8 @@ command line, rigs, solver options and statistics, time, platform).
 Where ``run`` and ``sweep`` write: ``--out DIR`` when given (the caller's choice); else the file's
 ``output.directory``, relative to the file's folder and confined to it: an absolute path, a ``..`` or a symbolic
 link that leads out of it is refused unless ``--allow-outside`` is given (a file from elsewhere must not write
-anywhere it likes); else ``out/<file stem>`` in the working directory.
+anywhere it likes); else ``out/<file stem>`` in the working directory (a stem that would name no folder
+below ``out/``, such as ``...toml``'s ``..``, is ``scenario`` / ``sweep`` / ``survey`` instead).
 
 Exit status: 0 on success, 2 for a bad scenario, sweep file, data file or command line (``error: <file>: <key>:
 <rule>`` on stderr), 1 when a simulation stops early (with the time reached) or the outputs cannot be written,
@@ -59,6 +60,7 @@ from pathlib import Path
 from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequence
 
 from . import __version__
+from .atomic import atomic_path, write_csv
 from .errors import InvalidParameterError, SimulationError
 
 __all__ = ["main", "staged_directory"]
@@ -435,6 +437,7 @@ def _run(args) -> int:
                                    f"{outcome.time_reached:.9g} s of t_end = {case.solver.t_end:g} s: {outcome}", 1)
             if isinstance(outcome, InvalidParameterError):
                 raise CommandError(f"{args.scenario}: case[{index}] {case.name!r}: {outcome}", 2)
+            _check_budget(args.scenario, index, case, outcome)
             log.info("case[%d] %r: %.3g s", index, case.name, outcome.wall_time)
             runs.append(outcome)
             bar.update()
@@ -448,6 +451,21 @@ def _run(args) -> int:
     written = _write(out, lambda directory: result.write(directory, format=args.format, command=args.command_line))
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
+
+
+def _check_budget(file: Path, index: int, case, run) -> None:
+    """A case that ran past its timeout, or ended short of t_end, is a failure (exit 1) like one the engine
+    stopped: the engine reads its clock only every 20 ms, so a run shorter than that finishes whatever its
+    budget, and a timeout of 1e-6 s must not pass as a success."""
+    where = f"{file}: case[{index}] {case.name!r}"
+    timeout = case.solver.timeout
+    if timeout is not None and run.wall_time > timeout:
+        raise CommandError(f"{where}: wall-clock budget exceeded: the run took {run.wall_time:.3g} s of timeout = "
+                           f"{timeout:g} s; raise --timeout (or the file's solver.timeout)", 1)
+    result = getattr(run, "result", None)
+    if result is not None and not result.completed:
+        raise CommandError(f"{where}: the run stopped at t = {result.t_reached:.9g} s of t_end = "
+                           f"{case.solver.t_end:g} s: {result.message}", 1)
 
 
 def _si_axis(sweep, key: str) -> List[Any]:
@@ -557,20 +575,18 @@ def _scenarios_copy(args) -> int:
     if not target.parent.is_dir():
         raise CommandError(f"scenarios copy: {target.parent} is not a directory", 2)
     data = examples[name].read_bytes()
+    if os.path.lexists(target):  # checked again, atomically, when the copy is linked in
+        raise CommandError(f"scenarios copy: {target} exists; not overwritten (remove it or give another DEST)", 1)
     try:
-        # O_EXCL: never replaces a file, and never follows a symbolic link out of DEST (it counts as existing)
-        descriptor = os.open(target, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        # written whole beside it, then linked in only if the name is still free: never replaces a file, never
+        # follows a symbolic link out of DEST (it counts as existing), never leaves a truncated copy
+        with atomic_path(target, replace=False) as temporary:
+            temporary.write_bytes(data)
     except FileExistsError:
         raise CommandError(f"scenarios copy: {target} exists; not overwritten (remove it or give another DEST)",
                            1) from None
     except OSError as error:
         raise CommandError(f"scenarios copy: cannot write {target} ({error.strerror or error})", 1) from None
-    try:
-        with os.fdopen(descriptor, "wb") as file:
-            file.write(data)
-    except BaseException:
-        target.unlink(missing_ok=True)
-        raise
     kind = "sweep" if b"[grid]" in data else "run"
     print(f"wrote {target}; run it with: frictionsim {kind} {shlex.quote(str(target))}")
     return 0
@@ -599,7 +615,7 @@ def _fit_table5(args) -> int:
 
     def write(directory: Path) -> List[Path]:
         path = directory / "table5_refit.csv"
-        refit.to_csv(path, index=False, float_format="%.10g")
+        write_csv(refit, path)
         return [path, demo.write_fig11(directory)] + _metadata(args, directory, extra={"data": "paper 000 Table 4"})
 
     written = _write(args.out, write)
@@ -613,7 +629,7 @@ def _fit(args) -> int:
     from . import plots
     from .fit import LAW_PARAMETERS, identify
 
-    out = args.out if args.out is not None else Path("out") / f"fit_{args.data.stem}"
+    out = args.out if args.out is not None else Path("out") / f"fit_{folder_name(args.data.stem, 'data')}"
     _check_target(out)
     laws = sorted(LAW_PARAMETERS)
     if args.law.lower().replace("-", "_") not in {k.lower() for k in laws}:
@@ -639,10 +655,11 @@ def _fit(args) -> int:
         import pandas as pd
 
         paths = [directory / "fit.csv", directory / "fit_record.csv"]
-        table.to_csv(paths[0], float_format="%.10g")
-        pd.DataFrame({"t": result.t, "relative_velocity": np.interp(result.t, record["time"], record["velocity"]),
-                      "measured": result.measured, "model": result.model,
-                      "residual": result.residuals}).to_csv(paths[1], index=False, float_format="%.10g")
+        write_csv(table, paths[0], index=True)
+        write_csv(pd.DataFrame({"t": result.t, "relative_velocity": np.interp(result.t, record["time"],
+                                                                             record["velocity"]),
+                                "measured": result.measured, "model": result.model, "residual": result.residuals}),
+                  paths[1])
         velocity = np.interp(result.t, record["time"], record["velocity"])
         paths.append(plots.save(plots.identification_figure(result, velocity, title=args.data.name),
                                 directory / "fit.png"))
@@ -801,7 +818,7 @@ def _torque_drag(args) -> int:
     from . import DrillString
     from . import plots, wells
 
-    out = args.out if args.out is not None else Path("out") / args.survey.stem
+    out = args.out if args.out is not None else Path("out") / folder_name(args.survey.stem, "survey")
     _check_target(out)
     for name in ("mu", "cased_mu", "casing_shoe", "mud_density", "wob", "bit_torque", "depth", "element_length",
                  "depth_step"):
@@ -869,9 +886,9 @@ def _torque_drag(args) -> int:
 
     def write(directory: Path) -> List[Path]:
         paths = [directory / "torque_drag.csv", directory / "broomstick.csv", directory / "trajectory.csv"]
-        nodes.to_csv(paths[0], index=False, float_format="%.10g")
-        chart.frame.to_csv(paths[1], index=False, float_format="%.10g")
-        wells.trajectory(survey).to_csv(paths[2], index=False, float_format="%.10g")
+        write_csv(nodes, paths[0])
+        write_csv(chart.frame, paths[1])
+        write_csv(wells.trajectory(survey), paths[2])
         paths.append(plots.save(plots.broomstick_figure(chart, title=str(args.survey.name)),
                                 directory / "broomstick.png"))
         paths.append(plots.save(plots.well_path_figure(survey, title=str(args.survey.name)),
@@ -879,8 +896,7 @@ def _torque_drag(args) -> int:
         if vibrated is not None:
             for name, frame in (("oscillator_broomstick.csv", vibrated), ("oscillator_zone.csv", zone),
                                 ("oscillator_summary.csv", zone_summary)):
-                paths.append(directory / name)
-                frame.to_csv(paths[-1], index=False, float_format="%.10g")
+                paths.append(write_csv(frame, directory / name))
             paths.append(plots.save(plots.oscillator_broomstick_figure(vibrated, zone, title=args.survey.name),
                                     directory / "oscillator_broomstick.png"))
         if placements is not None:
@@ -889,8 +905,7 @@ def _torque_drag(args) -> int:
                                   "weight_on_bit_without": p.weight_on_bit_without,
                                   "hook_load": p.hook_load, "best_depth": p.depths[0],
                                   "best_weight_on_bit": p.weight_on_bit}) for mu, p in placements.items()]
-            paths.append(directory / "placement.csv")
-            pd.concat(rows, ignore_index=True).to_csv(paths[-1], index=False, float_format="%.10g")
+            paths.append(write_csv(pd.concat(rows, ignore_index=True), directory / "placement.csv"))
             paths.append(plots.save(plots.placements_figure(placements, title=args.survey.name),
                                     directory / "placement.png"))
         return paths + _metadata(args, directory, extra={
@@ -907,7 +922,7 @@ def _output_directory(args, file: Path, directory: Optional[str], stem: str, wha
     if args.out is not None:
         return args.out
     if directory is None:
-        return Path("out") / stem
+        return Path("out") / folder_name(stem, "sweep" if what == "sweep file" else "scenario")
     base = Path(file).absolute().parent
     given = Path(directory)
     target = base / given
@@ -926,6 +941,16 @@ def _output_directory(args, file: Path, directory: Optional[str], stem: str, wha
         raise CommandError(f"{where}: {given} leads out of the {what}'s folder {base} (through '..' or a symbolic "
                            f"link); pass --out or --allow-outside to write elsewhere", 2)
     return target
+
+
+def folder_name(stem: str, fallback: str) -> str:
+    """A file's stem as one folder name below ``out/``: path separators and NULs become ``_``, and a stem that
+    is empty, blank or only dots (``...csv``'s stem is ``..``, which would make ``out/..`` the working directory)
+    is ``fallback``."""
+    name = stem
+    for separator in {"/", "\\", "\0", os.sep, os.altsep or "/"}:
+        name = name.replace(separator, "_")
+    return fallback if not name.strip() or not name.strip(". \t") else name
 
 
 # ----------------------------------------------------------------------------------------------- atomic outputs

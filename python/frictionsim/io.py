@@ -28,6 +28,7 @@ from typing import Any, Dict, Mapping, Optional, Union
 
 import numpy as np
 
+from .atomic import atomic_path
 from .errors import InvalidParameterError
 from .outputs import output_units
 
@@ -301,7 +302,8 @@ def _event_variables(events, dim: str, state_names, *, stop: bool) -> Dict[str, 
 
 # ------------------------------------------------------------------------------------------------ files
 def write_netcdf(dataset, path: Union[str, Path], engine: Optional[str] = None) -> Path:
-    """Write a Dataset as a netCDF file.
+    """Write a Dataset as a netCDF file, whole or not at all: to a temporary name beside ``path``, renamed into
+    place when complete (:mod:`frictionsim.atomic`), so an interrupted write leaves the earlier file intact.
 
     Parameters
     ----------
@@ -319,7 +321,8 @@ def write_netcdf(dataset, path: Union[str, Path], engine: Optional[str] = None) 
     """
     path = Path(path)
     name = netcdf_engine(engine)
-    dataset.to_netcdf(path, engine=name)
+    with atomic_path(path) as temporary:  # a run killed mid-write must not leave a truncated file under path
+        dataset.to_netcdf(temporary, engine=name)
     return path
 
 

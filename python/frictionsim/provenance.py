@@ -28,6 +28,8 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
+from .atomic import write_text
+
 __all__ = ["SCHEMA", "collect", "rig_record", "solver_options_record", "to_json_safe", "write_metadata"]
 
 #: Names the layout of the record, so a reader can tell which fields to expect.
@@ -115,7 +117,8 @@ def _is_rig_record(value: Any) -> bool:
 
 
 def write_metadata(directory: Union[str, Path], record: Mapping[str, Any]) -> Path:
-    """Write a provenance record as ``metadata.json``.
+    """Write a provenance record as ``metadata.json``, whole or not at all (:mod:`frictionsim.atomic`: a process
+    killed meanwhile leaves the earlier file).
 
     The file is strict JSON (non-finite numbers as the strings "NaN", "Infinity", "-Infinity"), indented, keys in
     the record's order.
@@ -143,9 +146,8 @@ def write_metadata(directory: Union[str, Path], record: Mapping[str, Any]) -> Pa
 
         raise InvalidParameterError(f"write_metadata: directory must be an existing directory (got {str(directory)!r})",
                                     "directory")
-    path = directory / "metadata.json"
-    path.write_text(json.dumps(to_json_safe(record), indent=2, allow_nan=False) + "\n", encoding="utf-8")
-    return path
+    text = json.dumps(to_json_safe(record), indent=2, allow_nan=False) + "\n"  # all of it, before the file opens
+    return write_text(directory / "metadata.json", text)  # whole or not at all: never a truncated metadata.json
 
 
 # ------------------------------------------------------------------------------------------------ records

@@ -199,10 +199,12 @@ def _is_quantity(value: Any) -> bool:
 
 
 def _has_unit(value: Any) -> bool:
-    """A value that needs converting: a string, a quantity, or a list / tuple holding one."""
+    """A value that needs converting: a string, a quantity, or a list / tuple holding one at any depth (a nested
+    list of strings is converted element by element, never passed on as text)."""
     if isinstance(value, str) or _is_quantity(value):
         return True
-    return isinstance(value, (list, tuple)) and any(isinstance(v, str) or _is_quantity(v) for v in value)
+    return isinstance(value, (list, tuple)) and any(
+        isinstance(v, str) or _is_quantity(v) or (isinstance(v, (list, tuple)) and _has_unit(v)) for v in value)
 
 
 def quantity(value: Any, parameter: str = "value"):
@@ -213,6 +215,9 @@ def quantity(value: Any, parameter: str = "value"):
     products, ``deg/30m`` and ``deg/100ft`` are per a course of 30 m / 100 ft, ``5 1/2 in`` and ``13-3/8 in`` are
     mixed numbers, ``°`` is a degree."""
     ureg = _registry_for(parameter, value)
+    if not isinstance(value, str) and not _is_quantity(value):
+        raise UnitError(f"{parameter}: expected a value with a unit (a string such as '25 klbf' or a pint quantity), "
+                        f"got {_brief(repr(value), 60)} [{type(value).__name__}]", parameter)
     if isinstance(value, str):
         parsed = _parse(value)
         if isinstance(parsed, str):
@@ -235,12 +240,16 @@ def to_si(value: Any, unit: str, parameter: str = "value") -> Any:
         return value
     if isinstance(value, (list, tuple)):
         return [to_si(v, unit, f"{parameter}[{i}]") for i, v in enumerate(value)]
+    # the target unit readable, or refused by name (a bare number as text needs no pint, nor a unit read)
+    context = f" (the unit {parameter} is converted to)"
     if isinstance(value, str):
         if not _is_number(value):
             _registry_for(parameter, value)
+            _unit(unit, "unit", context)
         number, problem = _text_to_si(value, unit)  # a string: read once, then from the cache
     else:
         given = quantity(value, parameter)
+        _unit(unit, "unit", context)
         number, problem = _in_unit(given, unit, f"{given:~}")
     if problem is not None:
         raise UnitError(f"{parameter}: {problem}", parameter)
@@ -259,12 +268,14 @@ def _registry_for(parameter: str, value: Any):
 def _parse(text: str):
     """The quantity a string says, or the problem (a str) why it says none."""
     ureg = registry()
+    if not text.strip():  # pint reads '' as the number 1: a value left out, never a friction coefficient of 1
+        return f"{text!r} is empty: give a number or a value with its unit"
     if len(text) > MAX_TEXT_LENGTH:
         return f"cannot read a value with a unit from {len(text)} characters (at most {MAX_TEXT_LENGTH})"
     try:
         parsed = ureg.parse_expression(text)
     except Exception as error:  # pint's parser raises anything from AssertionError to TokenError on garbage
-        return f"cannot read {_shown(text)} as a value with a unit ({type(error).__name__}: {error})"
+        return f"cannot read {_shown(text)} as a value with a unit ({type(error).__name__}: {_brief(str(error))})"
     return parsed if _is_quantity(parsed) else ureg.Quantity(parsed)
 
 
@@ -292,14 +303,25 @@ def _in_unit(given, unit: str, shown: str) -> Tuple[Any, Optional[str]]:
         number = _number(magnitude)
     except OverflowError:  # an integer beyond a double ('999...9 N', 400 digits)
         return None, f"{_shown(shown)} is beyond the range of a double in {unit}"
-    if isinstance(number, float) and not math.isfinite(number) and math.isfinite(given.magnitude):
-        # overflowed in the conversion (an inf or NaN given stays for the engine's own rule to name)
+    if _overflowed(given.magnitude, number):
         return None, f"{_shown(shown)} is not a finite value in {unit}"
     return number, None
 
 
+def _overflowed(given: Any, number: Any) -> bool:
+    """A value finite as given but not after the conversion (an inf or NaN given stays for the engine's own rule
+    to name)."""
+    with np.errstate(invalid="ignore"):
+        return bool(np.any(~np.isfinite(np.asarray(number, dtype=float)) & np.isfinite(np.asarray(given, dtype=float))))
+
+
 def _shown(text: str) -> str:
     return repr(text) if len(text) <= 40 else repr(text[:37] + "...")
+
+
+def _brief(text: str, length: int = 120) -> str:
+    """``text`` cut to ``length`` characters, for a message that quotes something of unbounded size."""
+    return text if len(text) <= length else text[:length - 3] + "..."
 
 
 def _is_number(text: str) -> bool:
@@ -320,23 +342,55 @@ def convert(value: Any, from_unit: str, to_unit: str) -> Any:
     ``convert(result.hook_load, "N", "klbf")``.
 
     Raises :class:`UnitError` naming ``from_unit`` or ``to_unit`` when it is no unit, or when the two measure
-    different things (not pint's own errors)."""
+    different things (not pint's own errors); naming ``value`` when it is not a real number or array of them (a
+    string or quantity with its unit goes through :func:`to_si`; None is no number) or when its value in
+    ``to_unit`` is beyond the range of a double."""
     import pint
 
     ureg = registry()
-    units = {}
-    for name, unit in (("from_unit", from_unit), ("to_unit", to_unit)):
-        try:
-            units[name] = _target(unit)
-        except Exception as error:  # pint raises UndefinedUnitError, DefinitionSyntaxError, ... on garbage
-            raise UnitError(f"{name}: cannot read {unit!r} as a unit ({type(error).__name__}: {error})",
-                            name) from None
+    units = {name: _unit(unit, name) for name, unit in (("from_unit", from_unit), ("to_unit", to_unit))}
+    numbers = _real_numbers(value, "value")
     try:
-        return _number(ureg.Quantity(np.asarray(value, dtype=float), units["from_unit"]).to(units["to_unit"]).magnitude)
+        with np.errstate(over="ignore", invalid="ignore"):
+            number = _number(ureg.Quantity(numbers, units["from_unit"]).to(units["to_unit"]).magnitude)
     except pint.errors.DimensionalityError:
         raise UnitError(f"to_unit: cannot convert {describe(from_unit)} "
                         f"[{_dimension_name(units['from_unit'].dimensionality)}] to {describe(to_unit)} "
                         f"[{_dimension_name(units['to_unit'].dimensionality)}]", "to_unit") from None
+    if _overflowed(numbers, number):
+        raise UnitError(f"value: {_brief(repr(value), 60)} {from_unit} is not a finite value in {to_unit} (beyond the "
+                        f"range of a double)", "value")
+    return number
+
+
+def _unit(unit: Any, name: str, context: str = ""):
+    """The pint unit of a unit string given as ``name``, or the UnitError naming it (never pint's own errors)."""
+    try:
+        if not isinstance(unit, str):
+            raise TypeError(f"a unit is a string, got {type(unit).__name__}")
+        if len(unit) > MAX_TEXT_LENGTH:
+            raise ValueError(f"{len(unit)} characters (at most {MAX_TEXT_LENGTH})")
+        return _target(unit)
+    except UnitsUnavailableError:
+        raise
+    except Exception as error:  # pint raises UndefinedUnitError, DefinitionSyntaxError, ... on garbage
+        raise UnitError(f"{name}: cannot read {_brief(repr(unit), 60)} as a unit{context} ({type(error).__name__}: "
+                        f"{_brief(str(error))})", name) from None
+
+
+def _real_numbers(value: Any, name: str) -> np.ndarray:
+    """``value`` as a float array, or the UnitError naming ``name``: numpy would read '2' as 2.0 and None as NaN."""
+    if isinstance(value, (str, bytes)) or _is_quantity(value) or value is None:
+        raise UnitError(f"{name}: expected a number or an array of numbers, got {_brief(repr(value), 60)} "
+                        f"[{type(value).__name__}] (a value with its unit goes through to_si)", name)
+    try:
+        array = np.asarray(value)
+        if array.dtype.kind not in "iuf":
+            raise TypeError(f"numbers of dtype {array.dtype}")
+        return np.asarray(array, dtype=float)
+    except (TypeError, ValueError) as error:
+        raise UnitError(f"{name}: expected a number or an array of numbers, got {_brief(repr(value), 60)} "
+                        f"({error})", name) from None
 
 
 def units_of(source: Any, routine: str = "__init__") -> Dict[str, str]:

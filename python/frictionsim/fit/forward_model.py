@@ -5,6 +5,7 @@ measured sample times, with tolerances that make the fitted force accurate to a 
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
@@ -28,8 +29,13 @@ def simulate_kwargs(simulate_options: Optional[Mapping[str, Any]], rtol: float,
     for name, value in (("rtol", rtol), ("atol", atol)):
         if value is None and name == "atol":
             continue
-        if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            reject(f"{name} must be a positive number (got {value!r})", name)
+        if not (math.isfinite(value) and value > 0):
             reject(f"{name} must be positive and finite (got {value!r})", name)
+    # the engine's own rule for rtol, now: each simulation would refuse it, and the search would count every
+    # refusal as a failed run and report a table of NaN instead of the option at fault
+    SolverOptions(rtol=float(rtol)).validate()
     sim_kwargs = dict(simulate_options or {})
     for reserved in ("output_times", "t_start", "t_end", "rtol", "atol"):
         if reserved in sim_kwargs:

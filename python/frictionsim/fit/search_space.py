@@ -16,6 +16,7 @@ import numpy as np
 
 from ..validation import reject
 from .parameters import canonical_name, LawDef, Param
+from .validation import real_number
 
 Bounds = Mapping[str, Tuple[float, float]]
 
@@ -123,9 +124,11 @@ def user_bounds(lawdef: LawDef, bounds: Optional[Bounds], extra: Mapping[str, Pa
             variable, other = lawdef.excess[name]
             reject(f"{where}: {name} is fitted as {variable} = {name} - {other} >= 0; bound that instead", where)
         try:
+            if isinstance(pair, (str, bytes)) or any(isinstance(v, (str, bytes)) for v in pair[:2]):
+                raise TypeError("text")  # never read as numbers (see validation.refuse_text)
             lo, hi = (float(pair[0]), float(pair[1]))
         except (TypeError, ValueError, IndexError):
-            reject(f"{where} must be a (lower, upper) pair of numbers (got {pair!r})", where)
+            reject(f"{where} must be a (lower, upper) pair of numbers [SI], not text (got {pair!r})", where)
         if math.isnan(lo) or math.isnan(hi) or not lo < hi:
             reject(f"{where} must satisfy lower < upper (got ({lo}, {hi}))", where)
         param = extra.get(name) or lawdef.param(name)
@@ -146,10 +149,7 @@ def user_values(lawdef: LawDef, values: Optional[Mapping[str, float]], where: st
     out: Dict[str, float] = {}
     for key, value in (values or {}).items():
         name = canonical_name(lawdef, key, where, extra)
-        try:
-            value = float(value)
-        except (TypeError, ValueError):
-            reject(f"{where}[{key!r}] must be a number (got {value!r})", f"{where}[{key!r}]")
+        value = real_number(f"{where}[{key!r}]", value)
         if not math.isfinite(value):
             reject(f"{where}[{key!r}] must be finite (got {value})", f"{where}[{key!r}]")
         out[name] = value

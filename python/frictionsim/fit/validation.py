@@ -12,17 +12,43 @@ from typing import Any, Optional, Tuple, Union
 
 import numpy as np
 
+from ..errors import InvalidParameterError
 from ..validation import reject
 
 #: What a kinematic rig takes as N: a constant [N] or a (t_N, N) sample pair.
 NormalForce = Union[float, Tuple[np.ndarray, np.ndarray]]
 
 
+def refuse_text(name: str, value: Any) -> None:
+    """Text is never read as a number here: strings become numbers only through :mod:`frictionsim.units` (the
+    engine's classes), and a fit takes SI numbers, so ``normal_force='90'`` is refused as ``rtol='1e-6'`` is."""
+    if isinstance(value, (str, bytes)):
+        reject(f"{name} must be a number [SI], not text (got {value!r})", name)
+
+
+def real_number(name: str, value: Any, rule: str = "must be a number") -> float:
+    """``float(value)`` of a number; text or anything else is refused with ``rule``."""
+    refuse_text(name, value)
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        reject(f"{name} {rule} (got {value!r})", name)
+
+
 def finite_vector(name: str, value: Any, n: Optional[int] = None, like: str = "t") -> np.ndarray:
     """A finite 1-D float array (of ``n`` samples, as many as ``like`` has, when given)."""
+    refuse_text(name, value)
     try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+        array = np.asarray(value)
+        # numpy would read '90' as 90.0 and drop a complex number's imaginary part
+        if array.dtype.kind in "USc" or (array.dtype.kind == "O" and any(isinstance(v, (str, bytes, complex))
+                                                                         for v in array.flat)):
+            reject(f"{name} must be an array of real numbers [SI], not text or complex (dtype {array.dtype})",
+                   name)
+        array = np.asarray(array, dtype=float)
+    except (TypeError, ValueError) as error:
+        if isinstance(error, InvalidParameterError):
+            raise
         reject(f"{name} must be a 1-D array of numbers", name)
     if array.ndim != 1:
         reject(f"{name} must be a 1-D array (got shape {array.shape})", name)
@@ -56,6 +82,7 @@ def checked_normal_force(normal_force: Any, t: np.ndarray) -> Tuple[NormalForce,
     """-> (what KinematicRig takes, N at t[0]); accepts a number, an array like t, or a (t_N, N) pair."""
     if normal_force is None:
         reject("normal_force is required: a positive number [N] or an array of N(t) samples", "normal_force")
+    refuse_text("normal_force", normal_force)
     if np.ndim(normal_force) == 0 and not isinstance(normal_force, (tuple, list)):
         try:
             value = float(normal_force)
