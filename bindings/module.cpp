@@ -25,6 +25,13 @@ void require_constructed(py::handle self) {
 
 namespace {
 
+/// `__setstate__` is pybind11's new-style constructor of an instance made by `__new__` (the enums' pickling:
+/// copyreg's `__newobj__`, then `obj.__setstate__(value)`, as pickle and copy.deepcopy do): the one attribute looked
+/// up before construction, since it is what constructs. A class without one raises AttributeError as before.
+bool constructs(py::handle name) {
+    return PyUnicode_Check(name.ptr()) && PyUnicode_CompareWithASCIIString(name.ptr(), "__setstate__") == 0;
+}
+
 /// Every class of the module checks construction on attribute access (methods, properties, pickling) and in repr,
 /// the ways Python reaches an instance's C++ value; the functions that take instances as arguments (the rigs'
 /// friction) call require_constructed themselves.
@@ -37,7 +44,7 @@ void guard_construction(py::module_& m) {
             continue;
         const py::object repr = cls.attr("__repr__");
         py::setattr(cls, "__getattribute__", py::cpp_function([](py::handle self, py::handle name) {
-            require_constructed(self);
+            if (!constructs(name)) require_constructed(self);
             PyObject* value = PyObject_GenericGetAttr(self.ptr(), name.ptr());
             if (value == nullptr) throw py::error_already_set();
             return py::reinterpret_steal<py::object>(value);

@@ -1,13 +1,15 @@
 """Issue 23's Python-side defects (helper harden), each with the reproducer the issue gives: default output folders
 that stay below out/, strings that reach numbers only through the units layer (and '' never does), fits that
 refuse a bad option instead of reporting a table of NaN, a timeout that fails the command, outputs written whole
-or not at all."""
+or not at all, and the engine's enums surviving pickle and copy."""
 
 from __future__ import annotations
 
+import copy
 import json
 import math
 import os
+import pickle
 import shutil
 from pathlib import Path
 
@@ -15,7 +17,7 @@ import numpy as np
 import pytest
 
 import frictionsim as fs
-from frictionsim import atomic, provenance
+from frictionsim import _core, atomic, provenance
 from frictionsim import units
 from frictionsim.cli import folder_name, main
 from frictionsim.fit import compare_laws, identify_dahl
@@ -255,3 +257,35 @@ def test_an_interrupted_metadata_write_leaves_the_earlier_file(tmp_path, monkeyp
     assert os.listdir(tmp_path) == ["metadata.json"]
     provenance.write_metadata(tmp_path, dict(record, n=3))
     assert json.loads(path.read_text(encoding="utf-8"))["n"] == 3 and os.listdir(tmp_path) == ["metadata.json"]
+
+
+# ----------------------------------------------------------------------------------------------- 5. enums
+ENUMS = [cls for cls in vars(_core).values() if isinstance(cls, type) and hasattr(cls, "__members__")]
+
+
+def test_every_enum_of_the_engine_is_in_the_walk():
+    assert {_core.Method, _core.LinearSolver} <= set(ENUMS)
+
+
+@pytest.mark.parametrize("enum", ENUMS, ids=lambda cls: cls.__name__)
+def test_enum_values_pickle_and_copy(enum):
+    for member in enum.__members__.values():  # "never constructed" before: __setstate__ was guarded
+        for protocol in range(2, pickle.HIGHEST_PROTOCOL + 1):
+            back = pickle.loads(pickle.dumps(member, protocol))
+            assert back == member and type(back) is enum and int(back) == int(member)
+        assert copy.deepcopy(member) == member and copy.copy(member) == member
+    options = _core.SolverOptions(method=_core.Method.cvode_bdf, linear_solver=_core.LinearSolver.band)
+    assert copy.deepcopy([options.method, options.linear_solver]) == [_core.Method.cvode_bdf, _core.LinearSolver.band]
+
+
+def test_an_unconstructed_object_is_still_refused():
+    law = fs.Coulomb.__new__(fs.Coulomb)
+    with pytest.raises(TypeError, match="never constructed"):
+        law.mu
+    with pytest.raises(TypeError, match="never constructed"):
+        repr(law)
+    with pytest.raises(AttributeError):
+        law.__setstate__  # the one name looked up before construction; Coulomb has none
+    method = _core.Method.__new__(_core.Method)
+    with pytest.raises(TypeError, match="never constructed"):
+        method.name
