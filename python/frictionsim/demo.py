@@ -57,6 +57,7 @@ from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from .atomic import write_csv
 from . import drillstring as ds
 from .axial import NO_VIBRATION_T_END, SWEEP_SETTLE, reduction_sweep, table4_comparison
 from .scenario import Scenario, ScenarioRun, loads, run
@@ -275,10 +276,8 @@ class Paper001:
 
         (directory / PAPER001_SCENARIO).mkdir(parents=True)
         written = self.fig7.write(directory / PAPER001_SCENARIO)
-        written.append(directory / "law_comparison.csv")
-        self.laws.to_csv(written[-1], index=False, float_format="%.10g")
-        written.append(directory / "stick_slip_map.csv")
-        self.map.to_pandas().to_csv(written[-1], index=False, float_format="%.10g")
+        written.append(write_csv(self.laws, directory / "law_comparison.csv"))
+        written.append(write_csv(self.map.to_pandas(), directory / "stick_slip_map.csv"))
         written.append(plots.save(plots.law_comparison_figure(self.laws), directory / "law_comparison.png"))
         written.append(plots.save(plots.stick_slip_map_figure(
             self.map, title="eq 6 law (fig7_friction), 40 s from rest per point, limit cycle after 20 s",
@@ -383,8 +382,8 @@ class FieldString:
 
         directory.mkdir(parents=True)
         written = [directory / "time_series.csv", directory / "stick_slip_map.csv"]
-        self.time_series().to_csv(written[0], index=False, float_format="%.10g")
-        self.map.to_pandas().to_csv(written[1], index=False, float_format="%.10g")
+        write_csv(self.time_series(), written[0])
+        write_csv(self.map.to_pandas(), written[1])
         rig = self.rig
         written.append(plots.save(ds.speeds_figure(
             rig, self.result, title=f"field string at w_set = {rig.surface_speed:g} rad/s, W = "
@@ -395,8 +394,7 @@ class FieldString:
                             f"{FIELD_TRANSIENT:g} s", point=FIELD_POINT), directory / "stick_slip_map.png"))
         if self.captured is not None:
             run = self.captured
-            written.append(directory / "well_b_captured.csv")
-            run.timeseries().to_csv(written[-1], index=False, float_format="%.10g")
+            written.append(write_csv(run.timeseries(), directory / "well_b_captured.csv"))
             written.append(plots.save(ds.speeds_panels_figure(
                 [(f"{run.rig.elements} elements, captured", run.rig, run.result)],
                 title="Well B (Aarsnes & Shor 2018), wall contacts captured by Moreau-Jean"),
@@ -482,10 +480,9 @@ class HorizontalWell:
                    .drop(columns=[f"hook_load_{'tool' if k == 'plain' else 'plain'}"])
                    .assign(operation="sliding_drilling", surface_torque=np.nan, tool=k == "tool")
                    for k in ("plain", "tool")]
-        pd.concat([frame, *sliding], ignore_index=True).to_csv(written[0], index=False, float_format="%.10g")
-        pd.DataFrame({"tool_depth": self.placement.scan_depths,
-                      "weight_on_bit": self.placement.scan_weight_on_bit}).to_csv(written[1], index=False,
-                                                                                 float_format="%.10g")
+        write_csv(pd.concat([frame, *sliding], ignore_index=True), written[0])
+        write_csv(pd.DataFrame({"tool_depth": self.placement.scan_depths,
+                                "weight_on_bit": self.placement.scan_weight_on_bit}), written[1])
         ax = plots.broomstick_axes(self.chart, title="horizontal well, 3 km lateral")
         for k, mu in enumerate(WELL_FRICTION_FACTORS):
             rows = self.with_tool[self.with_tool["friction_factor"] == mu]
@@ -587,8 +584,7 @@ class Demo:
             written += scenario_run.write(directory / subdir)
         for name, frame in (("fig7_friction_reduction.csv", self.reduction), ("friction_reduction.csv", self.sweep),
                             ("table5_refit.csv", self.refit)):
-            written.append(directory / name)
-            frame.to_csv(written[-1], index=False, float_format="%.10g")
+            written.append(write_csv(frame, directory / name))
         figure = plots.reduction_sweep_figure(
             self.sweep, [("coulomb_closed_form", "Coulomb closed form 1 - (2/pi) asin(v_d/v_a)"),
                          ("kinematic_coulomb", "kinematic rig, Coulomb"), ("axial_coulomb", "axial rig, Coulomb"),

@@ -30,6 +30,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from .atomic import atomic_path
 from .errors import InvalidParameterError
 
 __all__ = ["broomstick_axes", "broomstick_figure", "disc_speed_figure", "drive_force_axes", "drive_force_figure",
@@ -180,7 +181,8 @@ def save(figure, path: Union[str, Path], dpi: int = 120, *, release: bool = Fals
         figure = getattr(figure, "figure", None)
         if figure is None or not hasattr(figure, "savefig"):
             raise InvalidParameterError("save: figure must be a matplotlib Figure or Axes", "figure")
-    figure.savefig(path, dpi=dpi)
+    with atomic_path(path) as temporary:  # whole or not at all: a killed run leaves the earlier PNG
+        figure.savefig(temporary, dpi=dpi)
     if release and getattr(figure, _MADE_HERE, False):
         figure.clear()  # not a pyplot figure: nothing to close, this frees the artists
     return path

@@ -25,6 +25,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ..atomic import write_csv
 from .._core import PowerLawCoefficient, whole_cycle_window
 from ..errors import InvalidParameterError
 from .text import article, join
@@ -465,8 +466,7 @@ class StickSlipAnalysis(Analysis):
         written = []
         for run in runs:
             if run.map is not None:
-                written.append(directory / f"stick_slip_map_{run.case.name}.csv")
-                run.map.to_pandas().to_csv(written[-1], index=False, float_format="%.10g")
+                written.append(write_csv(run.map.to_pandas(), directory / f"stick_slip_map_{run.case.name}.csv"))
         return written
 
     def write_plots(self, runs, traces, wanted, directory, *, title, plot_window):

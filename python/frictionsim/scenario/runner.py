@@ -12,6 +12,7 @@ from typing import Any, Dict, Iterable, List, Optional, Tuple, Union
 
 import numpy as np
 
+from ..atomic import atomic_path, write_csv, write_text
 from ..errors import InvalidParameterError
 from ..simulation import simulate
 from .specs import Case, Scenario
@@ -126,7 +127,7 @@ class ScenarioRun:
         if self.scenario.text is not None and all(c.rig.samples is None for c in self.scenario.cases):
             # what was run, re-runnable with `frictionsim run` (not with a relative velocity_file: it would move)
             written.append(directory / "scenario.toml")
-            written[-1].write_text(self.scenario.text, encoding="utf-8")
+            write_text(written[-1], self.scenario.text)
         title = self.scenario.title or self.scenario.name
         traces = [(f"{name} ({label})" if name.lower() != label.lower() else label, frame)
                   for name, label, frame in frames]
@@ -155,7 +156,7 @@ def _write_timeseries(run, frame, path: Path, format: str) -> None:
 
 def _write_summary(summary, path: Path, format: str, record: Dict[str, Any]) -> None:
     if format == "csv":
-        summary.to_csv(path, index=False, float_format="%.10g")
+        write_csv(summary, path)
     elif format == "parquet":
         _write_parquet(summary, path, record)
     else:
@@ -179,9 +180,11 @@ def _write_parquet(frame, path: Path, record: Dict[str, Any]) -> None:
 
         table = pa.Table.from_pandas(frame, preserve_index=False)
         table = table.replace_schema_metadata({**(table.schema.metadata or {}), b"frictionsim": text.encode()})
-        pq.write_table(table, path)
+        with atomic_path(path) as temporary:
+            pq.write_table(table, temporary)
     else:  # fastparquet
-        frame.to_parquet(path, engine=engine, index=False, custom_metadata={"frictionsim": text})
+        with atomic_path(path) as temporary:
+            frame.to_parquet(temporary, engine=engine, index=False, custom_metadata={"frictionsim": text})
 
 
 def _write_csv(frame, path: Path) -> None:
@@ -190,8 +193,9 @@ def _write_csv(frame, path: Path) -> None:
     kinds = [frame[c].dtype.kind for c in frame.columns]
     values = frame.to_numpy(dtype=float) if all(k in "fiu" for k in kinds) else None
     if values is None or np.isnan(values).any():
-        frame.to_csv(path, index=False, float_format="%.10g")
+        write_csv(frame, path)
         return
     fmt = ",".join("%.10g" if k == "f" else "%d" for k in kinds)
-    np.savetxt(path, values, fmt=fmt, delimiter=",", header=",".join(map(str, frame.columns)), comments="",
-               encoding="utf-8")
+    with atomic_path(path) as temporary:
+        np.savetxt(temporary, values, fmt=fmt, delimiter=",", header=",".join(map(str, frame.columns)), comments="",
+                   encoding="utf-8")

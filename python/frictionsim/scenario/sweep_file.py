@@ -47,6 +47,7 @@ from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Seque
 
 import numpy as np
 
+from ..atomic import write_csv, write_text
 from .. import units
 from .parser import SCHEMA_UNITS, ScenarioError, loads_toml, parse, read_toml
 from .rigs import RIG_KINDS, friction_types
@@ -435,7 +436,7 @@ class SweepRun:
         directory = Path(directory)
         frame = self.frame()
         written = [directory / "sweep.csv"]
-        frame.to_csv(written[0], index=False, float_format="%.10g")
+        write_csv(frame, written[0])
         figure = self.figure(frame)
         if figure is not None:
             from ..plots import save
@@ -445,7 +446,7 @@ class SweepRun:
             log.warning("%s: no sweep.png: %s", self.sweep.name, self.why_no_figure())
         if self.sweep.text is not None:
             written.append(directory / "sweep.toml")
-            written[-1].write_text(self.sweep.text, encoding="utf-8")
+            write_text(written[-1], self.sweep.text)
         return written
 
     def why_no_figure(self) -> Optional[str]:
