@@ -182,6 +182,52 @@ TEST_CASE("captured drive: the torque-limited PI converges to StringRig's PiTopD
     CHECK(speed_error.back() < 1e-3);  // rad/s, against a peak of 6.7
 }
 
+TEST_CASE("captured drive: the sampled PI (zero-order hold) converges to StringRig's SampledPiTopDrive, first order "
+          "in h", "[mixed][drive][treatments][sampled]") {
+    // [treatments]' string under A&S's sampled PI: every 10 ms the set-point filtered by forward Euler (T_SP 0.5 s),
+    // the PI's demand held. The captured string samples at the end of every 10 ms / h steps; the exact model locates
+    // each sample as an event at k T_c and every wall switch (Dormand-Prince, 1e-10). Rows halfway between samples:
+    // a row on a sample instant holds the torque before it in the exact run, after it in the captured one.
+    TorsionalStringParams p = field_params(2e-3);
+    p.control_period = 0.01;
+    p.setpoint_time_constant = 0.5;
+    const TorsionalString ts = field_string(p);
+    const ExactString rig = exact_string(ts);
+    REQUIRE(rig.drive().sampled());
+    CHECK(rig.params().control_period == p.control_period);
+    const double t_end = 30.0;
+    SolverOptions o;
+    o.rtol = o.atol = 1e-10;
+    for (long k = 0; k < 3000; ++k) o.output_times.push_back(0.005 + 0.01 * static_cast<double>(k));
+    const Result exact = simulate(rig, t_end, o);
+    REQUIRE(exact.completed);
+    std::size_t samples = 0, wall_events = 0;
+    for (const Event& e : exact.events) {
+        samples += e.name == "top_drive.sample" ? 1 : 0;
+        wall_events += e.name.rfind("node_", 0) == 0 ? 1 : 0;
+    }
+    CHECK(samples >= 3000);
+    CHECK(wall_events >= 10);  // the walls stick and slip
+    const std::size_t held = rig.drive_state(SampledPiTopDrive::held_torque);
+    const auto motor = [&](std::size_t row) { return exact.state(row, held); };
+    const std::vector<double> steps{2.5e-3, 1.25e-3, 6.25e-4, 3.125e-4};
+    std::vector<double> speed_error, torque_error;
+    for (double h : steps) {
+        const Result r = simulate(ts, t_end, stepping(h, o.output_times));
+        REQUIRE(r.completed);
+        const Difference d = rms_difference(r, exact, rig, motor);
+        speed_error.push_back(d.speed);
+        torque_error.push_back(d.torque);
+    }
+    const double speed_order = fitted_order(steps, speed_error), torque_order = fitted_order(steps, torque_error);
+    INFO("RMS bit speed error " << speed_error.front() << " -> " << speed_error.back() << " rad/s (order "
+         << speed_order << "), motor torque " << torque_error.front() << " -> " << torque_error.back()
+         << " N m (order " << torque_order << ")");
+    CHECK(speed_order > 0.9);
+    CHECK(torque_order > 0.9);
+    CHECK(speed_error.back() < 1e-3);
+}
+
 TEST_CASE("captured drive: a prescribed top-drive speed: node 0 on the set-point, the steady torque the kinetic wall "
           "torque plus damping (A&S eq 27's bound times f_rat), and StringRig's PrescribedSpeed", "[mixed][drive]") {
     SECTION("the closed form of the steady sliding torque, with the ramped set-point and k_t") {

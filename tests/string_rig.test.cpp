@@ -4,8 +4,10 @@
 // stick/slip and the stuck steady state, the integrators against each other, and the analytic banded Jacobian
 // against difference quotients.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -1541,4 +1543,247 @@ TEST_CASE("string rig: energy balances close with k_t and a ramped set speed (st
         CHECK(planar_sticks >= 10);
         CHECK(worst_imbalance(rig, r) < 1e-7);
     }
+}
+
+// ---- the sampled PI (SampledPiTopDrive: control_period > 0) ------------------------------------------------------
+
+namespace {
+
+/// A two-node string without friction or damping (200 m of pipe, a 50 kg m^2 BHA) under the sampled PI.
+StringRig<Coulomb> sampled_two_node_rig(double setpoint_time_constant, double torque_limit) {
+    StringRigParams p;
+    p.damping_time = 0.0;
+    p.top_drive_inertia = 300.0;
+    p.proportional_gain = 3e3;
+    p.integral_gain = 1e3;
+    p.surface_speed = 4.0;
+    p.setpoint_time_constant = setpoint_time_constant;
+    p.torque_limit = torque_limit;
+    p.end_inertia = 50.0;
+    p.control_period = 0.01;
+    StringRigSetup s;
+    s.elements = 1;
+    s.wall_contacts = false;
+    return StringRig<Coulomb>(pipe_string(200.0), p, s, Coulomb(0.3));
+}
+
+/// The two-node string's states and the sampled PI's, advanced in closed form: between samples the motor torque u is
+/// constant, the mean speed Omega = (J_0 w_0 + J_1 w_1) / J grows as u t / J and the twist phi = th_1 - th_0 swings
+/// harmonically (w^2 = k J / (J_0 J_1)) about -u J_1 / (k J); at each sample A&S's MAIN.m, written out here.
+struct SampledTwoNode {
+    double j0, j1, k, kp, ki, limit, w_sp, filter, period;
+    double theta0 = 0.0, omega0 = 0.0, theta1 = 0.0, omega1 = 0.0;  // the string
+    double setpoint = 0.0, integral = 0.0, held = 0.0;              // the drive
+    int limited_samples = 0;
+
+    void sample() {
+        setpoint = filter > 0.0 ? setpoint + (w_sp - setpoint) * period / filter : w_sp;
+        const double e = setpoint - omega0, demand = kp * e + ki * integral;
+        if (std::abs(demand) > limit) {
+            held = demand > 0.0 ? limit : -limit;  // held at the limit, the integral frozen
+            ++limited_samples;
+        } else {
+            held = demand;
+            integral += period * e;
+        }
+    }
+    void advance(double dt) {
+        const double J = j0 + j1, w = std::sqrt(k * J / (j0 * j1)), offset = -held * j1 / (k * J);
+        const double mean_angle = (j0 * theta0 + j1 * theta1) / J, mean_speed = (j0 * omega0 + j1 * omega1) / J;
+        const double phi = theta1 - theta0 - offset, rate = omega1 - omega0;
+        const double angle = mean_angle + mean_speed * dt + 0.5 * held / J * dt * dt;
+        const double speed = mean_speed + held / J * dt;
+        const double twist = offset + phi * std::cos(w * dt) + rate / w * std::sin(w * dt);
+        const double twist_rate = -phi * w * std::sin(w * dt) + rate * std::cos(w * dt);
+        theta0 = angle - j1 / J * twist;
+        theta1 = angle + j0 / J * twist;
+        omega0 = speed - j1 / J * twist_rate;
+        omega1 = speed + j0 / J * twist_rate;
+    }
+};
+
+SampledTwoNode recursion_of(const StringRig<Coulomb>& rig) {
+    const StringRigParams& p = rig.params();
+    return {rig.node_inertia()[0], rig.node_inertia()[1], rig.lumped().torsional_stiffness[0], p.proportional_gain,
+            p.integral_gain, p.torque_limit, p.surface_speed, p.setpoint_time_constant, p.control_period};
+}
+
+/// Rows at 0.0005 + 0.001 m s (never on a sample instant: a row there is the state before or after it).
+std::vector<double> between_samples(double t_end) {
+    std::vector<double> t;
+    for (double m = 0.0; 0.0005 + 0.001 * m < t_end; m += 1.0) t.push_back(0.0005 + 0.001 * m);
+    return t;
+}
+
+}  // namespace
+
+TEST_CASE("string rig: a sampled PI on a frictionless two-node string follows the zero-order hold's recursion; the "
+          "samples located at k T_c, the torque held between them", "[string_rig][top_drive][sampled]") {
+    struct Case {
+        const char* name;
+        double filter, limit;
+    };
+    for (const Case c : {Case{"the set-point filtered, no limit reached", 0.5, 6e4},
+                         Case{"a step set-point, the limit held with the integral frozen", 0.0, 2000.0}}) {
+        for (Method m : {Method::dormand_prince, Method::rosenbrock}) {
+            INFO(c.name << (m == Method::dormand_prince ? ", Dormand-Prince" : ", RODAS4"));
+            const StringRig<Coulomb> rig = sampled_two_node_rig(c.filter, c.limit);
+            using Drive = SampledPiTopDrive;
+            REQUIRE(rig.drive_state(Drive::integral) == StringRig<Coulomb>::speed_error_integral);
+            REQUIRE(rig.state_names()[rig.drive_state(Drive::held_torque)] == "held_motor_torque");
+            REQUIRE(rig.state_names()[rig.drive_state(Drive::next_sample)] == "next_sample");
+            REQUIRE(rig.drive().sampled());
+            const double t_end = 3.0, period = rig.params().control_period;
+            SolverOptions o;
+            o.method = m;
+            o.rtol = o.atol = 1e-12;
+            o.output_times = between_samples(t_end);
+            o.record_event_states = true;
+            const Result r = simulate(rig, t_end, o);
+            REQUIRE(r.completed);
+            // RODAS4's steps round a constant state in its last bits (its linear solves); Dormand-Prince's add
+            // zero rates to it
+            const double ulps = m == Method::dormand_prince ? 0.0 : 1e-14;
+            // the recursion, sample by sample, compared at every row (each quantity against its largest value)
+            SampledTwoNode ref = recursion_of(rig);
+            double t_ref = 0.0;
+            std::array<double, 7> error{}, scale{};
+            long next = 0;  // the next sample's index
+            for (std::size_t row = 0; row < r.rows(); ++row) {
+                while (static_cast<double>(next) * period <= r.t[row]) {
+                    ref.advance(static_cast<double>(next) * period - t_ref);
+                    t_ref = static_cast<double>(next) * period;
+                    ref.sample();
+                    ++next;
+                }
+                ref.advance(r.t[row] - t_ref);
+                t_ref = r.t[row];
+                const std::array<std::size_t, 7> column{rig.theta(0),
+                                                        rig.omega(0),
+                                                        rig.theta(1),
+                                                        rig.omega(1),
+                                                        rig.drive_state(Drive::held_torque),
+                                                        rig.drive_state(Drive::integral),
+                                                        rig.drive_state(Drive::setpoint)};
+                const std::array<double, 7> expected{ref.theta0, ref.omega0, ref.theta1,  ref.omega1,
+                                                     ref.held,   ref.integral, ref.setpoint};
+                for (std::size_t i = 0; i < column.size(); ++i) {
+                    error[i] = std::max(error[i], std::abs(r.state(row, column[i]) - expected[i]));
+                    scale[i] = std::max(scale[i], std::abs(expected[i]));
+                }
+                CHECK(r.state(row, rig.drive_state(Drive::next_sample)) ==
+                      Approx(static_cast<double>(next)).epsilon(ulps).margin(0.0));
+            }
+            double worst = 0.0;
+            for (std::size_t i = 0; i < error.size(); ++i) worst = std::max(worst, error[i] / scale[i]);
+            INFO("worst difference from the recursion, relative to each state's largest value: " << worst);
+            CHECK(worst < 1e-9);
+            // the samples: one event each at k T_c (t itself against the grid), the held torque constant after it
+            std::vector<const Event*> samples;
+            for (const Event& e : r.events)
+                if (e.name == "top_drive.sample") samples.push_back(&e);
+            REQUIRE(samples.size() >= 300);
+            REQUIRE(samples.size() <= 301);  // the sample at t_end itself may fire
+            for (std::size_t k = 0; k < samples.size(); ++k) {
+                const double at = static_cast<double>(k) * period;
+                CHECK(std::abs(samples[k]->time - at) <= 1e-12 * std::max(at, period));
+                CHECK(samples[k]->state_after[rig.drive_state(Drive::next_sample)] ==
+                      Approx(static_cast<double>(k + 1)).epsilon(ulps).margin(0.0));
+            }
+            std::size_t k = 0;
+            const std::size_t held_column = rig.drive_state(Drive::held_torque);
+            for (std::size_t row = 0; row < r.rows(); ++row) {
+                while (k + 1 < samples.size() && samples[k + 1]->time <= r.t[row]) ++k;
+                const double held = samples[k]->state_after[rig.drive_state(Drive::held_torque)];
+                const double* x = &r.states[row * r.state_count()];
+                // bit for bit between samples (Dormand-Prince)
+                CHECK(r.state(row, rig.drive_state(Drive::held_torque)) == Approx(held).epsilon(ulps).margin(0.0));
+                CHECK(rig.surface_torque(r.t[row], x, rig.initial_mode(r.t[row], x)) == r.state(row, held_column));
+            }
+            if (c.limit < 1e4) {  // the first samples at the limit, the integral frozen at 0 meanwhile
+                REQUIRE(ref.limited_samples >= 10);
+                std::size_t at_limit = 0;
+                for (const Event* e : samples) {
+                    const bool limited = e->mode_after_name == "drive_sampled_at_positive_limit";
+                    at_limit += limited ? 1 : 0;
+                    if (limited) {
+                        CHECK(e->state_after[rig.drive_state(Drive::held_torque)] == c.limit);
+                        CHECK(e->state_after[rig.drive_state(Drive::integral)] ==
+                              e->state_before[rig.drive_state(Drive::integral)]);
+                    }
+                }
+                CHECK(at_limit == static_cast<std::size_t>(ref.limited_samples));
+                CHECK(samples.back()->mode_after_name == "drive_sampled");  // released once the speed came up
+            } else {
+                CHECK(ref.limited_samples == 0);
+            }
+        }
+    }
+}
+
+TEST_CASE("string rig: energy balance with stick-slip at the walls and the bit under a sampled PI",
+          "[string_rig][top_drive][sampled]") {
+    const auto base = stick_slip_rig(8);
+    StringRigParams p = base.params();
+    p.control_period = 0.01;
+    const StringRig<Coulomb, VelocityWeakeningBit> rig(pipe_string(1000.0), p, base.setup(), Coulomb(0.2, 0.3),
+                                                       base.bit());
+    SolverOptions o;
+    o.rtol = 1e-9;
+    o.atol = 1e-10;
+    o.output_times = grid(10.0, 0.5);
+    const Result r = simulate(rig, 10.0, o);
+    REQUIRE(r.completed);
+    std::size_t samples = 0, bit_sticks = 0;
+    for (const Event& e : r.events) {
+        samples += e.name == "top_drive.sample" ? 1 : 0;
+        bit_sticks += e.name.rfind("bit.", 0) == 0 && e.mode_after_name == "bit_stick" ? 1 : 0;
+    }
+    CHECK(samples >= 1000);
+    CHECK(bit_sticks >= 1);  // stick-slip at the bit
+    check_torsional_balance(rig, r);
+}
+
+TEST_CASE("string rig: a sampled PI's bad input names the parameter", "[string_rig][top_drive][sampled][validation]") {
+    const DrillString string = pipe_string(500.0);
+    StringRigSetup s;
+    s.elements = 4;
+    const auto make = [&](double period, TopDrive drive) {
+        StringRigParams p;
+        p.control_period = period;
+        StringRigSetup with = s;
+        with.top_drive = drive;
+        return [=] { (void)StringRig<Coulomb>(string, p, with, Coulomb(0.3)); };
+    };
+    for (double bad : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()})
+        CHECK(rejected_parameter(make(bad, TopDrive::pi_motor)) == "control_period");
+    // a prescribed speed has no controller to sample (as TorsionalString refuses it)
+    CHECK(rejected_parameter(make(0.01, TopDrive::prescribed_speed)) == "control_period");
+    CHECK(rejected_parameter(make(0.0, TopDrive::prescribed_speed)) == "<nothing thrown>");
+    SampledPiTopDriveParams d;
+    d.control_period = 0.0;  // the drive type samples: T_c > 0
+    CHECK(rejected_parameter([&] { (void)SampledPiTopDrive(d); }) == "control_period");
+    d.control_period = 0.01;
+    d.torque_limit = -1.0;
+    CHECK(rejected_parameter([&] { (void)SampledPiTopDrive(d); }) == "torque_limit");
+    // a run from t_0 = 1 s with the first sample left at t = 0 would never sample: refused, naming the state
+    StringRigParams p;
+    p.control_period = 0.01;
+    const StringRig<Coulomb> rig(string, p, s, Coulomb(0.3));
+    std::string message;
+    try {
+        (void)simulate(rig, 2.0, SolverOptions{}, 1.0);
+    } catch (const SimulationError& e) {
+        message = e.what();
+    }
+    CHECK(message.find("next_sample") != std::string::npos);
+    std::vector<double> x = rig.initial_state();
+    x[rig.drive_state(SampledPiTopDrive::next_sample)] = 100.0;  // the first sample at t_0 = 100 T_c
+    StringRig<Coulomb> later = rig;
+    later.set_initial_state(x);
+    const Result r = simulate(later, 1.5, SolverOptions{}, 1.0);
+    REQUIRE(r.completed);
+    REQUIRE(!r.events.empty());
+    CHECK(r.events.front().name == "top_drive.sample");
+    CHECK(r.events.front().time == 1.0);
 }

@@ -6,15 +6,17 @@
 //   drive:    the continuous PI, k_p e + k_i int e on node 0 (StringRig's PiTopDrive, its torque limit the string's
 //             torque_limit, or out of reach where that is 0: no limit), or the prescribed speed (top_drive
 //             prescribed_speed: StringRig's PrescribedSpeed), the set-point ramped as the captured string's,
-//             omega_SP (1 - exp(-t / T_SP)) (setpoint_time_constant; 0 a step);
+//             omega_SP (1 - exp(-t / T_SP)) (setpoint_time_constant; 0 a step); the sampled PI (control_period
+//             T_c > 0: StringRig's SampledPiTopDrive, A&S's MAIN.m as the captured string's, sampled at t_0 + k T_c
+//             with t_0 = 0, each sample located as an event);
 //   damping:  StringRig's element damping beta k_e (damping_time) and A&S's absolute k_t (damping_rate: k_t
 //             times each node's string inertia, the captured string's C(i, i));
 //   walls:    a Coulomb contact at each node with a bound (static mu_s N r, kinetic f_rat times it), the normal
 //             force N_i = bound_i / (mu_s r_i) so that the bounds are the string's to rounding;
 //   bit:      off bottom none; on bottom NavarroLopezBit with node N's wall merged into one contact (both act on
 //             node N: their bounds add), as the captured string's node N.
-// What StringRig cannot carry is refused, naming the parameter: a stick band, a sampled PI, a bit torque off
-// bottom, a wall at node 0 (the top drive's node has none in StringRig).
+// What StringRig cannot carry is refused, naming the parameter: a stick band, a bit torque off bottom, a wall at
+// node 0 (the top drive's node has none in StringRig).
 #pragma once
 
 #include <cstddef>
@@ -63,7 +65,6 @@ inline ExactStringParts exact_string_parts(const TorsionalString& ts) {
     const TorsionalStringParams& p = ts.params();
     if (p.stick_band_speed > 0.0)
         reject(who, "stick_band_speed", "0 (StringRig's Coulomb walls have no stick band)", p.stick_band_speed);
-    if (p.control_period > 0.0) reject(who, "control_period", "0 (a continuous PI)", p.control_period);
     if (p.bit_torque > 0.0) reject(who, "bit_torque", "0 (StringRig's bit off bottom carries no torque)", p.bit_torque);
     const std::vector<double>& bound = ts.static_friction_torque();
     if (bound.front() > 0.0)
@@ -81,6 +82,7 @@ inline ExactStringParts exact_string_parts(const TorsionalString& ts) {
     q.damping_time = p.damping_time;
     q.damping_rate = p.damping_rate;
     q.setpoint_time_constant = p.setpoint_time_constant;
+    q.control_period = p.control_period;
     StringRigSetup& s = out.setup;
     s.elements = ts.nodes() - 1;
     s.top_drive = ts.top_drive();

@@ -11,7 +11,9 @@
 //    adds to it (PiTopDrive: paper 001's PI speed control with a torque limit), or a prescribed surface speed
 //    (w_0 = w_set held, the torque it takes recorded as work), or a user's own type of the drive concept. The
 //    default, TopDriveChoice, picks PiTopDrive or PrescribedSpeed from StringRigSetup::top_drive; both ramp the
-//    set speed as w_set (1 - exp(-t / T_SP)) (setpoint_time_constant; 0: a step).
+//    set speed as w_set (1 - exp(-t / T_SP)) (setpoint_time_constant; 0: a step). With control_period T_c > 0 the
+//    PI is SampledPiTopDrive: sampled at t = k T_c (events "top_drive.sample", where the drive's jump map updates
+//    its held torque, integral and filtered set-point), the torque held between samples.
 //  * hoisting (Hoisting): the top node moves at the hook speed, or the hook load H holds it up.
 //  * the hole's inclination I_i at each node: the straight hole's, or given per node (a surveyed well:
 //    string_geometry.hpp builds the set-up from a Survey).
@@ -24,7 +26,8 @@
 //    holds a stuck node is known from the state and each contact's stick condition is its own (no joint
 //    complementarity problem is needed at a switch).
 //  * the bit (bit.hpp) at node N, any bit law in (bit speed, weight on bit) -> torque, through DiscContact.
-// States, node by node so that the Jacobian is banded: the drive's (speed_error_integral), then per node theta_i, omega_i,
+// States, node by node so that the Jacobian is banded: the drive's (speed_error_integral; a sampled PI's also
+// held_motor_torque, sampled_setpoint, next_sample), then per node theta_i, omega_i,
 // [u_i, v_i], [the wall law's states], [slip_axis_i: the planar contact's reference axis, axial runs with a wall law
 // that remembers reversals (wall_contact.hpp)], then the bit law's states and six work integrals that close the balance
 //   drive_work + hoist_work + excitation_work = change of (kinetic + elastic + gravity potential energy)
@@ -200,7 +203,7 @@ public:
     std::size_t law_state(std::size_t node) const { return drive_states_ + node * block_ + (axial_ ? 4 : 2); }
     std::size_t bit_state() const { return drive_states_ + (setup_.elements + 1) * block_; }
     std::size_t work_offset() const { return bit_state() + ZB; }
-    /// The PI integral's index (PiTopDrive's and the default drive's one state).
+    /// The PI integral's index (PiTopDrive's one state, SampledPiTopDrive's first, the default drive's first).
     static constexpr std::size_t speed_error_integral = 0;
 
     const StringRigParams& params() const { return p_; }
@@ -725,9 +728,13 @@ public:
                 }
             }
         }
-        if (drive_has_slot() && any(fired + k, drive_guard_count()))
+        if (drive_has_slot() && any(fired + k, drive_guard_count())) {
+            // the drive's states may jump (a sampled PI's sample), then its mode follows from the new states
+            if constexpr (detail::top_drive_has_jump<Drive>::value)
+                drive_jump(drive_, drive_input(t, x), next[drive_slot_], fired + k, x + drive_state(0));
             next[drive_slot_] =
                 static_cast<std::int8_t>(drive_.switch_mode(drive_input(t, x), next[drive_slot_], fired + k));
+        }
         return next;
     }
 

@@ -39,12 +39,14 @@ struct StringRigParams {
     double end_mass = 0.0;              ///< m_end, kg: its mass (its buoyed weight joins node N's)
     double damping_rate = 0.0;          ///< k_t, 1/s: viscous torque -k_t J_i w_i at node i (J_i its string inertia)
     double setpoint_time_constant = 0.0;  ///< T_SP, s: the set speed ramps as w_set (1 - exp(-t / T_SP)); 0: a step
+    double control_period = 0.0;  ///< T_c, s: 0 a continuous PI; > 0 the PI sampled every T_c, zero-order hold
 
-    static constexpr std::array<Field<StringRigParams>, 19> fields();
+    static constexpr std::array<Field<StringRigParams>, 20> fields();
     static constexpr const char* rig_name = "StringRig";  ///< as Python and the rig list name it
     /// The Result's columns beside t, the wall law's states (numbered per node, theta_3 as dahl_deflection_3) and the
     /// bit law's (bit_*): a row name_* is a state per node 0 (top) .. N (bit); u_* and v_* only in axial runs,
-    /// speed_error_integral only under the PI drive. The mode column counts the stuck wall contacts.
+    /// speed_error_integral only under the PI drive. The mode column counts the stuck wall contacts. A sampled PI's
+    /// held_motor_torque (N m), sampled_setpoint (rad/s) and next_sample (an index) are not declared yet.
     static constexpr std::array<RigOutput, 14> outputs() {
         return {{
             {"friction_force", "N m", "the total wall friction torque, sum of r_i times the circumferential friction"},
@@ -65,7 +67,7 @@ struct StringRigParams {
     }
 };
 
-inline constexpr std::array<Field<StringRigParams>, 19> StringRigParams::fields() {
+inline constexpr std::array<Field<StringRigParams>, 20> StringRigParams::fields() {
     using P = StringRigParams;
     return {{
         {"damping_time", "beta", "s", Rule::non_negative(), &P::damping_time,
@@ -100,6 +102,9 @@ inline constexpr std::array<Field<StringRigParams>, 19> StringRigParams::fields(
          "node's string inertia (k_t rho J w per unit length)."},
         {"setpoint_time_constant", "T_SP", "s", Rule::non_negative(), &P::setpoint_time_constant,
          "Set-point ramp: the set (or prescribed) speed is w_set (1 - exp(-t / T_SP)) from rest; 0: a step."},
+        {"control_period", "T_c", "s", Rule::non_negative(), &P::control_period,
+         "Sampling period of the PI drive, zero-order hold (Aarsnes & Shor's MAIN.m: the set-point filtered by "
+         "forward Euler at each sample); 0: a continuous PI. Not with a prescribed speed."},
     }};
 }
 

@@ -23,10 +23,14 @@
 //   analytic Jacobian: void torque_partials(in, mode, double& d_speed, double* d_state) const   (dT/dw0, dT/dz)
 //                      void rate_partials(in, mode, j, double& d_speed, double* d_state, double& d_acceleration)
 //                      (row j of dz/dt: d/dw0, d/dz, d/d(dw0))
+//   optional, a jump map: void jump(in, mode, fired, double* z) const   when the drive's guards fire, the rig calls
+//                                       it before switch_mode (which then sees the new states): the drive's states
+//                                       may jump there (z; in.z holds them before the jump and may alias z). Without
+//                                       it the states are continuous at a switch.
 // check_top_drive<Drive>() says whether a type meets it (a static_assert in StringRig names the concept). A
 // user's drive is any such type (tests/string_rig.test.cpp builds a DC motor's torque-speed line).
 //
-// The two built-in drives:
+// The built-in drives:
 //  * PiTopDrive: paper 001's drive, a motor of inertia J_td under PI speed control with a torque limit,
 //      T_m = clamp(k_p (w_set(t) - w_0) + k_i I, -T_max, T_max),  dI/dt = w_set(t) - w_0 (linear),
 //    the set speed ramped from rest as Aarsnes & Shor's, w_set(t) = w_SP (1 - exp(-t / T_SP)) (T_SP = 0: a step),
@@ -34,9 +38,16 @@
 //    the linear law would push the torque straight back past the limit and the frozen one back inside (a Filippov
 //    sliding motion along T_m = T_max), the drive holds the limit with the integral following it (modes +-2),
 //    k_i dI/dt = k_p (dw_0/dt - dw_set/dt).
+//  * SampledPiTopDrive: the same PI sampled every T_c (control_period) with a zero-order hold, as Aarsnes & Shor's
+//      MAIN.m (TorsionalString's sampled PI): at t = k T_c the set-point sp steps by forward Euler through the
+//      first-order filter (sp += (w_SP - sp) T_c / T_SP; T_SP = 0: sp = w_SP), the demand k_p (sp - w_0) + k_i I is
+//      held, clamped to +-T_max, and I += T_c (sp - w_0) unless it was clamped (anti-windup). Between samples T_m is
+//      constant. The held torque, I, sp and the next sample's index k are states that jump at the sample (its
+//      jump map), located as the event g = k T_c - t (t itself against the grid: no drift over long runs).
 //  * PrescribedSpeed: w_0 = w_set(t) held (the same ramp; node 0's acceleration dw_set/dt prescribed with it).
 // TopDriveChoice, StringRig's default, picks one of them at run time from StringRigSetup::top_drive and the
-// StringRigParams drive fields, and keeps the historical layout (the integral state present either way).
+// StringRigParams drive fields (SampledPiTopDrive where control_period > 0), and keeps the historical layout (the
+// integral state present either way, first).
 #pragma once
 
 #include <array>
@@ -68,6 +79,11 @@ struct SetpointRamp {
     double at(double t) const { return time_constant > 0.0 ? speed * (1.0 - std::exp(-t / time_constant)) : speed; }
     double rate(double t) const {
         return time_constant > 0.0 ? speed / time_constant * std::exp(-t / time_constant) : 0.0;
+    }
+    /// The sampled filter's set-point after a sample period dt from `setpoint`: the ramp's first-order filter by
+    /// forward Euler, setpoint + (w_SP - setpoint) dt / T (A&S's MAIN.m); T = 0: w_SP.
+    double sampled(double setpoint, double dt) const {
+        return time_constant > 0.0 ? setpoint + (speed - setpoint) * dt / time_constant : speed;
     }
 };
 
@@ -212,6 +228,106 @@ private:
     Params p_;
 };
 
+// ---- the PI sampled with a zero-order hold ----------------------------------------------------------------------
+
+/// SampledPiTopDrive's parameters: PiTopDrive's table and the control period T_c.
+struct SampledPiTopDriveParams : PiTopDriveParams {
+    double control_period = 0.01;  ///< T_c, s
+
+    static constexpr std::array<Field<SampledPiTopDriveParams>, 7> fields() {
+        using P = SampledPiTopDriveParams;
+        return extend_fields<P>(PiTopDriveParams::fields(),
+                                std::array<Field<P>, 1>{{{"control_period", "T_c", "s", Rule::positive(),
+                                                          &P::control_period,
+                                                          "Sampling period of the PI (zero-order hold)."}}});
+    }
+    /// The drive fields of a StringRig's parameters (control_period > 0 for a sampled drive).
+    static SampledPiTopDriveParams from(const StringRigParams& p) {
+        SampledPiTopDriveParams s;
+        static_cast<PiTopDriveParams&>(s) = PiTopDriveParams::from(p);
+        s.control_period = p.control_period;
+        return s;
+    }
+};
+
+class SampledPiTopDrive {
+public:
+    using Params = SampledPiTopDriveParams;
+    /// Its states: PiTopDrive's integral first (StringRig::speed_error_integral), then the held torque, the
+    /// filtered set-point and the index k of the next sample (at k T_c: 0 in the initial state, the first sample
+    /// at t = 0; a run from t_0 sets it to the first k with k T_c >= t_0).
+    enum State : std::size_t { integral, held_torque, setpoint, next_sample, states };
+    explicit SampledPiTopDrive(const Params& p = {}) : p_(p) {
+        validate_fields("SampledPiTopDrive", p_, Params::fields());
+    }
+    const Params& params() const { return p_; }
+
+    bool holds_speed() const { return false; }
+    double held_speed() const { return p_.surface_speed; }
+    double inertia() const { return p_.top_drive_inertia; }
+    std::size_t state_count() const { return states; }
+    const char* state_name(std::size_t j) const {
+        static constexpr std::array<const char*, states> names{"speed_error_integral", "held_motor_torque",
+                                                               "sampled_setpoint", "next_sample"};
+        return names[j];
+    }
+    /// k T_c, s: the instant of the next sample.
+    double sample_time(const double* z) const { return z[next_sample] * p_.control_period; }
+
+    /// The held torque (modes: 0 inside the limit, +-1 held at +-T_max; names only, the torque is the state's).
+    double torque(const DriveInput& in, int) const { return in.z[held_torque]; }
+    void rates(const DriveInput&, double, int, double* dz) const {
+        for (std::size_t j = 0; j < states; ++j) dz[j] = 0.0;
+    }
+    bool rates_follow_acceleration() const { return false; }
+
+    std::size_t guard_count() const { return 1; }
+    int initial_mode(const DriveInput& in) const {
+        // a sample overdue at the start would never fire (the guard triggers falling through zero); rows read back
+        // at a located sample are late by the location's ulps only
+        if (in.time - sample_time(in.z) > 1e-9 * (std::abs(in.time) + p_.control_period))
+            detail::reject("SampledPiTopDrive", "next_sample",
+                           "a state with next_sample * control_period at or after the run's start (0 from t = 0)",
+                           in.z[next_sample]);
+        return held_mode(in.z[held_torque]);
+    }
+    void guards(const DriveInput& in, double, int, double* g) const { g[0] = sample_time(in.z) - in.time; }
+    /// The sample at t = k T_c: the set-point filtered, the demand held (clamped), the integral (unless clamped),
+    /// the next sample's index.
+    void jump(const DriveInput& in, int, const int* fired, double* z) const {
+        if (fired[0] == 0) return;
+        const double sp = ramp().sampled(in.z[setpoint], p_.control_period), e = sp - in.speed;
+        const double integral_before = in.z[integral], k = in.z[next_sample];
+        const double demand = p_.proportional_gain * e + p_.integral_gain * integral_before;
+        const bool limited = std::abs(demand) > p_.torque_limit;
+        z[held_torque] = limited ? std::copysign(p_.torque_limit, demand) : demand;
+        z[integral] = limited ? integral_before : integral_before + p_.control_period * e;
+        z[setpoint] = sp;
+        z[next_sample] = k + 1.0;
+    }
+    int switch_mode(const DriveInput& in, int, const int*) const { return held_mode(in.z[held_torque]); }
+    const char* guard_name(std::size_t, int) const { return "sample"; }
+    const char* mode_name(int mode) const {
+        return mode > 0 ? "drive_sampled_at_positive_limit" : mode < 0 ? "drive_sampled_at_negative_limit"
+                                                                       : "drive_sampled";
+    }
+
+    void torque_partials(const DriveInput&, int, double& d_speed, double* d_state) const {
+        d_speed = 0.0;
+        for (std::size_t j = 0; j < states; ++j) d_state[j] = j == held_torque ? 1.0 : 0.0;
+    }
+    void rate_partials(const DriveInput&, int, std::size_t, double& d_speed, double* d_state,
+                       double& d_acceleration) const {
+        d_speed = d_acceleration = 0.0;
+        for (std::size_t j = 0; j < states; ++j) d_state[j] = 0.0;
+    }
+
+private:
+    int held_mode(double held) const { return held >= p_.torque_limit ? 1 : held <= -p_.torque_limit ? -1 : 0; }
+    SetpointRamp ramp() const { return {p_.surface_speed, p_.setpoint_time_constant}; }
+    Params p_;
+};
+
 // ---- a prescribed surface speed ------------------------------------------------------------------------------
 
 class PrescribedSpeed {
@@ -251,56 +367,101 @@ private:
 
 // ---- the run-time choice (StringRig's default) -----------------------------------------------------------------
 
-/// PiTopDrive or PrescribedSpeed as StringRigSetup::top_drive says, with StringRigParams' drive fields. The PI
-/// integral is a state either way (zero and still under a prescribed speed), as it always was.
+/// PiTopDrive or PrescribedSpeed as StringRigSetup::top_drive says, with StringRigParams' drive fields; the PI
+/// sampled (SampledPiTopDrive) where control_period > 0. The PI integral is the first state either way (zero and
+/// still under a prescribed speed), as it always was; the sampled PI's other states follow it.
 class TopDriveChoice {
 public:
     TopDriveChoice(const StringRigParams& p, const StringRigSetup& s)
-        : pi_(s.top_drive == TopDrive::pi_motor), motor_(PiTopDriveParams::from(checked(p))),
+        : kind_(kind_of(checked(p), s)), motor_(PiTopDriveParams::from(p)), sampled_(sampled_params(p)),
           held_(p.surface_speed, p.setpoint_time_constant) {}
-    TopDrive kind() const { return pi_ ? TopDrive::pi_motor : TopDrive::prescribed_speed; }
+    TopDrive kind() const { return kind_ == Kind::held ? TopDrive::prescribed_speed : TopDrive::pi_motor; }
+    /// Is the PI sampled (control_period > 0)?
+    bool sampled() const { return kind_ == Kind::sampled; }
 
-    bool holds_speed() const { return !pi_; }
+    bool holds_speed() const { return kind_ == Kind::held; }
     double held_speed() const { return held_.held_speed(); }
     double held_speed_at(double t) const { return held_.held_speed_at(t); }
     double held_acceleration(double t) const { return held_.held_acceleration(t); }
-    double inertia() const { return pi_ ? motor_.inertia() : 0.0; }
-    std::size_t state_count() const { return 1; }
-    const char* state_name(std::size_t j) const { return motor_.state_name(j); }
-    double torque(const DriveInput& in, int mode) const { return pi_ ? motor_.torque(in, mode) : 0.0; }
+    double inertia() const { return kind_ == Kind::held ? 0.0 : motor_.inertia(); }
+    std::size_t state_count() const { return sampled() ? sampled_.state_count() : 1; }
+    const char* state_name(std::size_t j) const { return sampled() ? sampled_.state_name(j) : motor_.state_name(j); }
+    double torque(const DriveInput& in, int mode) const {
+        switch (kind_) {
+        case Kind::pi: return motor_.torque(in, mode);
+        case Kind::sampled: return sampled_.torque(in, mode);
+        default: return 0.0;
+        }
+    }
     void rates(const DriveInput& in, double dw0, int mode, double* dz) const {
-        if (pi_) motor_.rates(in, dw0, mode, dz);
+        if (kind_ == Kind::pi) motor_.rates(in, dw0, mode, dz);
+        else if (kind_ == Kind::sampled) sampled_.rates(in, dw0, mode, dz);
         else dz[0] = 0.0;
     }
-    bool rates_follow_acceleration() const { return pi_ && motor_.rates_follow_acceleration(); }
-    std::size_t guard_count() const { return pi_ ? motor_.guard_count() : 0; }
-    int initial_mode(const DriveInput& in) const { return pi_ ? motor_.initial_mode(in) : 0; }
+    bool rates_follow_acceleration() const { return kind_ == Kind::pi && motor_.rates_follow_acceleration(); }
+    std::size_t guard_count() const {
+        return kind_ == Kind::pi ? motor_.guard_count() : kind_ == Kind::sampled ? sampled_.guard_count() : 0;
+    }
+    int initial_mode(const DriveInput& in) const {
+        return kind_ == Kind::pi ? motor_.initial_mode(in) : kind_ == Kind::sampled ? sampled_.initial_mode(in) : 0;
+    }
     void guards(const DriveInput& in, double dw0, int mode, double* g) const {
-        if (pi_) motor_.guards(in, dw0, mode, g);
+        if (kind_ == Kind::pi) motor_.guards(in, dw0, mode, g);
+        else if (kind_ == Kind::sampled) sampled_.guards(in, dw0, mode, g);
+    }
+    void jump(const DriveInput& in, int mode, const int* fired, double* z) const {
+        if (kind_ == Kind::sampled) sampled_.jump(in, mode, fired, z);  // the continuous PI's states never jump
     }
     int switch_mode(const DriveInput& in, int mode, const int* fired) const {
-        return pi_ ? motor_.switch_mode(in, mode, fired) : mode;
+        return kind_ == Kind::pi        ? motor_.switch_mode(in, mode, fired)
+               : kind_ == Kind::sampled ? sampled_.switch_mode(in, mode, fired)
+                                        : mode;
     }
-    const char* guard_name(std::size_t k, int mode) const { return motor_.guard_name(k, mode); }
-    const char* mode_name(int mode) const { return pi_ ? motor_.mode_name(mode) : held_.mode_name(mode); }
+    const char* guard_name(std::size_t k, int mode) const {
+        return sampled() ? sampled_.guard_name(k, mode) : motor_.guard_name(k, mode);
+    }
+    const char* mode_name(int mode) const {
+        return kind_ == Kind::pi        ? motor_.mode_name(mode)
+               : kind_ == Kind::sampled ? sampled_.mode_name(mode)
+                                        : held_.mode_name(mode);
+    }
     void torque_partials(const DriveInput& in, int mode, double& d_speed, double* d_state) const {
-        if (pi_) return motor_.torque_partials(in, mode, d_speed, d_state);
+        if (kind_ == Kind::pi) return motor_.torque_partials(in, mode, d_speed, d_state);
+        if (kind_ == Kind::sampled) return sampled_.torque_partials(in, mode, d_speed, d_state);
         d_speed = d_state[0] = 0.0;
     }
     void rate_partials(const DriveInput& in, int mode, std::size_t j, double& d_speed, double* d_state,
                        double& d_acceleration) const {
-        if (pi_) return motor_.rate_partials(in, mode, j, d_speed, d_state, d_acceleration);
+        if (kind_ == Kind::pi) return motor_.rate_partials(in, mode, j, d_speed, d_state, d_acceleration);
+        if (kind_ == Kind::sampled) return sampled_.rate_partials(in, mode, j, d_speed, d_state, d_acceleration);
         d_speed = d_state[0] = d_acceleration = 0.0;
     }
 
 private:
+    enum class Kind { pi, sampled, held };
     /// The rig's table first, so that a bad drive field is named as the rig's (as it always was).
     static const StringRigParams& checked(const StringRigParams& p) {
         validate_fields("StringRig", p, StringRigParams::fields());
         return p;
     }
-    bool pi_;
+    static Kind kind_of(const StringRigParams& p, const StringRigSetup& s) {
+        if (s.top_drive == TopDrive::prescribed_speed) {
+            if (p.control_period > 0.0)  // as TorsionalString refuses it
+                detail::reject("StringRig", "control_period",
+                               "0 with top_drive prescribed_speed (no controller to sample)", p.control_period);
+            return Kind::held;
+        }
+        return p.control_period > 0.0 ? Kind::sampled : Kind::pi;
+    }
+    /// The sampled drive's parameters; a placeholder period where the PI is continuous (the drive not used).
+    static SampledPiTopDriveParams sampled_params(const StringRigParams& p) {
+        SampledPiTopDriveParams s = SampledPiTopDriveParams::from(p);
+        if (!(s.control_period > 0.0)) s.control_period = SampledPiTopDriveParams{}.control_period;
+        return s;
+    }
+    Kind kind_;
     PiTopDrive motor_;
+    SampledPiTopDrive sampled_;
     PrescribedSpeed held_;
 };
 
@@ -355,7 +516,20 @@ template <class D>
 struct top_drive_held_ramp<D, std::void_t<decltype(double{std::declval<const D&>().held_speed_at(0.0)}),
                                           decltype(double{std::declval<const D&>().held_acceleration(0.0)})>>
     : std::true_type {};
+/// Does D have a jump map (jump(in, mode, fired, z): its states change where its guards fire)?
+template <class D, class = void>
+struct top_drive_has_jump : std::false_type {};
+template <class D>
+struct top_drive_has_jump<D, std::void_t<decltype(std::declval<const D&>().jump(
+                                 std::declval<const DriveInput&>(), 0, std::declval<const int*>(),
+                                 std::declval<double*>()))>> : std::true_type {};
 }  // namespace detail
+/// Where the drive's guards fired: its jump map on its states z (nothing for a drive without one).
+template <class D>
+void drive_jump(const D& d, const DriveInput& in, int mode, const int* fired, double* z) {
+    if constexpr (detail::top_drive_has_jump<D>::value) d.jump(in, mode, fired, z);
+    else (void)d, (void)in, (void)mode, (void)fired, (void)z;
+}
 /// Does D give the partials of its torque and rates (StringRig's analytic Jacobian needs them)?
 template <class D>
 inline constexpr bool top_drive_has_partials_v = detail::top_drive_has_partials<D>::value;
