@@ -2,7 +2,9 @@
 // with distributed Coulomb stiction, PI top drive and the bit off bottom (drillstring/torsional_string.hpp, stepped
 // by Moreau-Jean) against the paper's closed forms (sec. 4) and side by side with the authors' published MATLAB
 // code run under Octave at its own grid (tests/data/aarsnes_shor_2018/README.md: provenance and the pi factor), and
-// its convergence in N and in the step. Runs share a cache: each configuration is simulated once.
+// its convergence in N and in the step. Runs share a cache: each configuration is simulated once. And the captured
+// string's torque-limited PI, implicit ([implicit_drive]): a rigid spin-up at the limit, its convergence to
+// StringRig's PiTopDrive, steps far past the old explicit limit, the energy balance step by step.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -11,13 +13,17 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
 
+#include <frictionsim/simulate.hpp>
+#include <frictionsim/string/exact_string.hpp>
 #include <frictionsim/string/torsional_string.hpp>
 
 #include "catch.hpp"
+#include "convergence.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
@@ -346,4 +352,289 @@ TEST_CASE("torsional string: bad parameters name the parameter", "[aarsnes_shor]
     o.step = 3e-3;  // the PI's 0.01 s is not a multiple
     o.output_interval = 0.03;
     CHECK(rejected_parameter([&] { (void)ts.simulate(o); }) == "control_period");
+}
+
+// ---- the torque-limited continuous PI, implicit (TorsionalString::Stepper's limited drive) ----------------------
+
+namespace {
+
+/// A deviated string for the limited drive: 1200 m of 5" pipe, vertical to 300 m then building to 70 deg at
+/// 800 m (no wall at node 0, as StringRig has none), Coulomb walls mu 0.25 with f_rat 0.5 (stick-slip), mud
+/// 1200 kg/m^3, a 500 kg m^2 top drive under PiTopDrive's default gains (5e3, 2e3) ramped to 6 rad/s (T_SP 1 s), a
+/// 60 kg m^2 BHA off bottom, StringRig's element damping 2 ms.
+TorsionalStringParams limited_params(double torque_limit) {
+    TorsionalStringParams p;
+    p.top_drive_inertia = 500.0;
+    p.proportional_gain = 5e3;
+    p.integral_gain = 2e3;
+    p.speed_setpoint = 6.0;
+    p.setpoint_time_constant = 1.0;
+    p.friction_coefficient = 0.25;
+    p.kinetic_ratio = 0.5;
+    p.damping_time = 2e-3;
+    p.bha_inertia = 60.0;
+    p.mud_density = 1200.0;
+    p.torque_limit = torque_limit;
+    return p;
+}
+
+TorsionalString limited_string(const TorsionalStringParams& p, std::size_t elements = 16) {
+    PipeSection pipe;
+    pipe.length = 1200.0;
+    const Survey survey{{{0.0, 0.0, 0.0}, {300.0, 0.0, 0.0}, {800.0, 70.0 * pi / 180.0, 0.0}}};
+    return TorsionalString(DrillString({pipe}), p, elements, survey);
+}
+
+TimeStepping moreau_jean_step(double h) {
+    TimeStepping s;
+    s.step = h;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("implicit limited PI: a rigid string spun up at the limit gains angular momentum at T_max - T_b, its "
+          "integral frozen, at any step", "[aarsnes_shor][implicit_drive]") {
+    // 60 m of pipe in 3 elements (its modes above 150 rad/s, damped by beta = 5 ms), no walls, a bit torque T_b. The
+    // PI's demand at the stepped set-point, k_p omega_SP = 2e5 N m, is far past T_max = 8e3, so the motor holds
+    // +T_max with its integral frozen at 0 until k_p (omega_SP - w_0) = T_max, w_0 = 38.4 rad/s. The string's springs
+    // and dampers are internal: the theta-method moves the total angular momentum sum J_i w_i by exactly
+    // (T_max - T_b) h per step, whatever the step and theta. The old explicit limited PI asked h k_p < I_TD + J_0
+    // (h < 60 ms here): 0.5 s runs too (theta = 1 there, so that the stiff string's modes do not ring), and both
+    // settle where the integral holds T_b at the set speed.
+    TorsionalStringParams p;
+    p.top_drive_inertia = 300.0;
+    p.proportional_gain = 5e3;
+    p.integral_gain = 1e4;
+    p.speed_setpoint = 40.0;
+    p.setpoint_time_constant = 0.0;
+    p.friction_coefficient = 0.0;
+    p.bit_torque = 2e3;
+    p.damping_time = 5e-3;
+    p.torque_limit = 8e3;
+    PipeSection pipe;
+    pipe.length = 60.0;
+    const TorsionalString ts(DrillString({pipe}), p, 3);
+    const Eigen::VectorXd inertia = ts.system().mass.diagonal();
+    const double release_speed = p.speed_setpoint - p.torque_limit / p.proportional_gain;
+    const double slope = (p.torque_limit - p.bit_torque) / inertia.sum(), t_end = 12.0;
+    for (const auto& [h, theta] : {std::pair{1e-3, 0.5}, std::pair{0.5, 1.0}}) {
+        TimeStepping setup = moreau_jean_step(h);
+        setup.theta = theta;
+        TorsionalString::Stepper stepper = ts.make_stepper(setup);
+        CHECK(stepper.drive_side() == 1);  // at the limit from the start
+        double t_release = -1.0, row[4];
+        long frozen_steps = 0;
+        while (!stepper.finished(t_end)) {
+            stepper.step(t_end, false);
+            const double t = stepper.time();
+            if (t_release < 0.0 && stepper.drive_side() == 1 && stepper.drive_integral() == 0.0) {  // frozen
+                ++frozen_steps;
+                CHECK(inertia.dot(stepper.velocities()) == Approx(slope * inertia.sum() * t).epsilon(1e-12));
+                stepper.row(t, row);
+                CHECK(row[2] == p.torque_limit);
+            } else if (t_release < 0.0) {
+                t_release = t;
+            }
+        }
+        INFO("h = " << h << " s: released at " << t_release << " s (closed form " << release_speed / slope
+                    << " s), after " << frozen_steps << " steps at the limit, the integral frozen");
+        CHECK(frozen_steps > 0);
+        CHECK(std::abs(t_release - release_speed / slope) <= h + 0.01);
+        stepper.row(stepper.time(), row);  // the set speed, the integral holding T_b
+        CHECK(row[1] == Approx(p.speed_setpoint).epsilon(1e-6));
+        CHECK(row[2] == Approx(p.bit_torque).epsilon(1e-6));
+        CHECK(stepper.drive_integral() == Approx(p.bit_torque / p.integral_gain).epsilon(1e-6));
+    }
+}
+
+TEST_CASE("implicit limited PI: converges to StringRig's PiTopDrive under the same limit as the unlimited PI does",
+          "[aarsnes_shor][implicit_drive]") {
+    // [implicit_drive]'s string with T_max = 2600 N m, above the break-off torque (2275 N m): the start-up's demand
+    // (k_p omega_SP (1 - exp(-t))) reaches the limit at 0.30 s; the exact model slides along it with the integral
+    // following (PiTopDrive's mode 2) to 0.54 s, holds it with the integral frozen (mode 1) and leaves it at 2.10 s;
+    // the string then sticks and slips below it. The exact model locates every wall switch and the drive's limit
+    // events (Dormand-Prince, 1e-10). The same string without the limit measures the unlimited PI's error; without
+    // walls (mu 0: a linear string, theta = 1/2 second order) the drive's own. RMS over the 0.01 s rows, h = 4 ->
+    // 0.25 ms, the old explicit limited PI (tau_m and I from each step's start) against this one:
+    //   walls, limited:   bit speed 6.39e-3 -> 4.05e-4 rad/s (order 0.99), motor torque 3.96 -> 0.287 N m (0.95);
+    //                     now 5.99e-4 -> 3.30e-5 (order 1.12), 0.213 -> 0.011 N m (1.10), the unlimited PI's
+    //                     3.51e-4 -> 2.45e-5 (0.87), 0.184 -> 0.010 N m (0.98): the walls' capture is first order;
+    //   no walls, T_max = 2000 N m (at the limit from 0.12 to 1.61 s): bit speed 5.68e-3 -> 3.46e-4 rad/s (order
+    //                     1.01), torque 2.97 -> 0.195 N m (0.98); now 1.91e-4 -> 1.70e-6 (1.77), 9.2e-2 -> 1.0e-3
+    //                     N m (1.73), the unlimited PI's 2.00: the limit crossed within a step costs O(h^2).
+    const double t_end = 20.0;
+    const std::vector<double> steps{4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4};
+    SolverOptions o;
+    o.rtol = o.atol = 1e-10;
+    o.output_times = frictionsim::test::grid(t_end, 0.01);
+    struct Errors {
+        std::vector<double> speed, torque;
+    };
+    const auto measure = [&](double limit, double mu) {
+        TorsionalStringParams p = limited_params(limit);
+        p.friction_coefficient = mu;
+        const TorsionalString ts = limited_string(p);
+        const ExactString rig = exact_string(ts);
+        const Result exact = simulate(rig, t_end, o);
+        REQUIRE(exact.completed);
+        const StringRigParams& q = rig.params();
+        const SetpointRamp ramp{q.surface_speed, q.setpoint_time_constant};
+        std::vector<double> motor(exact.rows());  // PiTopDrive's law clamped (its integral follows while sliding)
+        std::size_t exact_at_limit = 0, limit_events = 0;
+        for (std::size_t row = 0; row < exact.rows(); ++row) {
+            const double u = q.proportional_gain * (ramp.at(exact.t[row]) - exact.state(row, rig.omega(0))) +
+                             q.integral_gain * exact.state(row, rig.drive_state(0));
+            motor[row] = std::clamp(u, -q.torque_limit, q.torque_limit);
+            exact_at_limit += std::abs(motor[row]) == q.torque_limit ? 1 : 0;
+        }
+        for (const Event& e : exact.events) limit_events += e.name.rfind("top_drive", 0) == 0 ? 1 : 0;
+        if (limit > 0.0) {
+            CHECK(exact_at_limit >= 100);
+            CHECK(limit_events >= 2);
+        }
+        const std::size_t bit = ts.nodes() - 1;
+        Errors errors;
+        for (double h : steps) {
+            SolverOptions m;
+            m.method = Method::moreau_jean;
+            m.step = h;
+            m.output_times = o.output_times;
+            const Result r = simulate(ts, t_end, m);
+            REQUIRE(r.completed);
+            REQUIRE(r.rows() == exact.rows());
+            const std::size_t speed = r.column("bit_speed"), tau = r.column("motor_torque");
+            double ds = 0.0, dt = 0.0;
+            std::size_t beyond = 0;
+            for (std::size_t row = 0; row < r.rows(); ++row) {
+                beyond += limit > 0.0 && std::abs(r.state(row, tau)) > limit ? 1 : 0;
+                const double a = r.state(row, speed) - exact.state(row, rig.omega(bit));
+                const double b = r.state(row, tau) - motor[row];
+                ds += a * a;
+                dt += b * b;
+            }
+            CHECK(beyond == 0);  // the torque within the limit on every row
+            errors.speed.push_back(std::sqrt(ds / static_cast<double>(r.rows())));
+            errors.torque.push_back(std::sqrt(dt / static_cast<double>(r.rows())));
+        }
+        return errors;
+    };
+    const auto describe_errors = [&](const Errors& e) {
+        std::ostringstream s;
+        s << "bit speed " << e.speed.front() << " -> " << e.speed.back() << " rad/s (order "
+          << frictionsim::test::fitted_order(steps, e.speed) << "), motor torque " << e.torque.front() << " -> "
+          << e.torque.back() << " N m (order " << frictionsim::test::fitted_order(steps, e.torque) << ")";
+        return s.str();
+    };
+    const Errors walls = measure(2600.0, 0.25), walls_unlimited = measure(0.0, 0.25);
+    const Errors bare = measure(2000.0, 0.0), bare_unlimited = measure(0.0, 0.0);  // its peak 2602 N m unlimited
+    INFO("walls, limited: " << describe_errors(walls) << "; unlimited: " << describe_errors(walls_unlimited));
+    INFO("no walls, limited: " << describe_errors(bare) << "; unlimited: " << describe_errors(bare_unlimited));
+    for (std::size_t k = 0; k < steps.size(); ++k) {  // the limit's error now within the unlimited PI's
+        CHECK(walls.speed[k] < 3.0 * walls_unlimited.speed[k]);
+        CHECK(walls.torque[k] < 3.0 * walls_unlimited.torque[k]);
+    }
+    CHECK(frictionsim::test::fitted_order(steps, walls.speed) > 0.9);
+    CHECK(frictionsim::test::fitted_order(steps, walls.torque) > 0.9);
+    CHECK(frictionsim::test::fitted_order(steps, bare.speed) > 1.5);
+    CHECK(frictionsim::test::fitted_order(steps, bare.torque) > 1.5);
+    CHECK(walls.speed.back() < 1e-4);  // rad/s, against a peak of 7.4
+}
+
+TEST_CASE("implicit limited PI: steps far beyond the old explicit limit h k_p < I_TD + J_0 stay bounded and converge",
+          "[aarsnes_shor][implicit_drive]") {
+    // [implicit_drive]'s string under a stiff speed loop, k_p = 4e5 N m s/rad (k_i 2e5): the old explicit limited
+    // PI multiplied the top drive's speed error by 1 - h k_p / (I_TD + J_0) each linear step, stable below
+    // h = 1.3 ms (refused beyond, naming `step`). Here h = 40, 20, 10 ms (31, 16, 8 times that) against
+    // h = 0.25 ms: the torque within the limit on every row, the speeds bounded, the bit's speed converging.
+    TorsionalStringParams p = limited_params(2600.0);
+    p.proportional_gain = 4e5;
+    p.integral_gain = 2e5;
+    const TorsionalString ts = limited_string(p);
+    const double j0 = ts.system().mass.coeff(0, 0), t_end = 10.0;
+    CHECK(p.proportional_gain * 10e-3 > 7.0 * j0);
+    SolverOptions m;
+    m.method = Method::moreau_jean;
+    m.output_times = frictionsim::test::grid(t_end, 0.04);
+    m.step = 2.5e-4;
+    const Result fine = simulate(ts, t_end, m);
+    REQUIRE(fine.completed);
+    const std::vector<double> steps{40e-3, 20e-3, 10e-3};
+    std::vector<double> speed_error;
+    for (double h : steps) {
+        m.step = h;
+        const Result r = simulate(ts, t_end, m);
+        REQUIRE(r.completed);
+        const std::size_t bit = r.column("bit_speed"), top = r.column("top_drive_speed"),
+                          tau = r.column("motor_torque");
+        double d = 0.0, fastest = 0.0;
+        for (std::size_t row = 0; row < r.rows(); ++row) {
+            CHECK(std::abs(r.state(row, tau)) <= p.torque_limit);
+            fastest = std::max({fastest, std::abs(r.state(row, bit)), std::abs(r.state(row, top))});
+            const double e = r.state(row, bit) - fine.state(row, bit);
+            d += e * e;
+        }
+        speed_error.push_back(std::sqrt(d / static_cast<double>(r.rows())));
+        INFO("h = " << h << " s (h k_p / (I_TD + J_0) = " << h * p.proportional_gain / j0 << "): RMS bit speed "
+                    << speed_error.back() << " rad/s off h = 0.25 ms, fastest node " << fastest << " rad/s");
+        CHECK(fastest < 3.0 * p.speed_setpoint);
+    }
+    const double order = frictionsim::test::fitted_order(steps, speed_error);
+    INFO("order " << order);
+    CHECK(speed_error[1] < speed_error[0]);
+    CHECK(speed_error[2] < speed_error[1]);
+    CHECK(order > 0.5);
+}
+
+TEST_CASE("implicit limited PI: the motor's work is the string's energy change, its damping and its walls' friction, "
+          "step by step", "[aarsnes_shor][implicit_drive]") {
+    // theta = 1/2 keeps the linear part's energy exactly: per step, with v_m = (v_k + v_k+1) / 2,
+    //   E_k+1 - E_k = h v_m . (tau e_0 - C v_m + r),   E = v.M v / 2 + q.K q / 2
+    // over the string alone (the PI's gains out of C and K), r the walls' torques of the step and tau the motor
+    // torque the step applied: +-T_max at the limit; in the linear mode the PI's damper and spring at the step's
+    // middle, the mean of the PI law at its ends, which the drive's integral at both ends gives. The run starts at
+    // the limit, slides along it, leaves it and sticks and slips (the walls' work negative).
+    const TorsionalStringParams p = limited_params(2600.0);
+    const TorsionalString ts = limited_string(p);
+    const double none = 0.0, h = 1e-3, t_end = 20.0;
+    const LinearMechanicalSystem bare = ts.system(&none);  // M, C, K without the PI's gains
+    const SetpointRamp ramp = ts.setpoint_ramp();
+    const auto law = [&](double t, double w, double integral, int side) {
+        return side != 0 ? side * p.torque_limit : p.proportional_gain * (ramp.at(t) - w) + p.integral_gain * integral;
+    };
+    const auto energy = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+        return 0.5 * v.dot(bare.mass * v) + 0.5 * q.dot(bare.stiffness * q);
+    };
+    TorsionalString::Stepper stepper = ts.make_stepper(moreau_jean_step(h));
+    Eigen::VectorXd q = stepper.positions(), v = stepper.velocities();
+    const double start = energy(q, v);
+    double work = 0.0, damping = 0.0, friction = 0.0, worst = 0.0, e = start;
+    long frozen = 0, sliding = 0, linear = 0;
+    while (!stepper.finished(t_end)) {
+        const double t0 = stepper.time(), i0 = stepper.drive_integral();
+        stepper.step(t_end, false);
+        const int side = stepper.drive_side();
+        (side == 0 ? linear : stepper.drive_integral() == i0 ? frozen : sliding) += 1;
+        const Eigen::VectorXd vm = 0.5 * (v + stepper.velocities());
+        const double tau = 0.5 * (law(t0, v(0), i0, side) +
+                                  law(stepper.time(), stepper.velocities()(0), stepper.drive_integral(), side));
+        const double w = h * vm(0) * tau, d = h * vm.dot(bare.damping * vm), f = h * vm.dot(stepper.contact_forces());
+        q = stepper.positions();
+        v = stepper.velocities();
+        const double next = energy(q, v);
+        worst = std::max(worst, std::abs(next - e - (w - d + f)));
+        work += w;
+        damping += d;
+        friction += f;
+        e = next;
+    }
+    INFO("steps linear / at the limit, integral frozen / sliding along it: " << linear << " / " << frozen << " / "
+         << sliding << "; motor work " << work << " J, string energy " << e - start << " J, damping " << damping
+         << " J, walls " << friction << " J; worst step residual " << worst << " J");
+    CHECK(frozen > 0);
+    CHECK(sliding > 0);
+    CHECK(linear > 0);
+    CHECK(friction < -0.1 * work);
+    CHECK(worst < 1e-9 * h * p.torque_limit * p.speed_setpoint);
+    CHECK(e - start == Approx(work - damping + friction).epsilon(1e-9));
 }

@@ -14,15 +14,21 @@
 //              continuous, that is a damper k_p and a spring k_i to the set-point angle (the top row of C and K),
 //              or sampled with a zero-order hold (A&S's MAIN.m: every 0.01 s). With a torque limit T_max > 0 the
 //              drive is StringRig's PiTopDrive (string/top_drive.hpp): tau_m = clamp(k_p e + k_i I, -T_max, T_max),
-//              I frozen while the torque is limited (anti-windup). The continuous limited PI is then explicit: tau_m
-//              and I from each step's start (I by conditional forward Euler), held over the step as the sampled
-//              PI's output is, a first-order error in h where the unlimited PI's implicit damper and spring are
-//              exact in the theta-method; the saturation needs no set-valued solve then, and the torque is +-T_max
-//              exactly while limited (the sliding motion along the limit, PiTopDrive's modes +-2, is captured as
-//              an alternation of limited and linear steps within O(h) of T_max). Stable for h k_p < I_TD + J_0
-//              (checked). Or (set_top_drive) a prescribed speed: node 0 turns at omega_SP(t) whatever it takes
-//              (StringRig's PrescribedSpeed); its dof is held out of the inclusion (at rest, decoupled), element 0
-//              pulls node 1 from the prescribed angle, and motor_torque reports what holds node 0 on its path:
+//              I frozen while the torque is limited (anti-windup). The continuous limited PI stays implicit: each
+//              step is taken in the drive's mode, linear (the unlimited PI's damper and spring, the spring's set
+//              angle behind by what the integral missed while frozen) or at the limit (tau_m = +-T_max, the PI out
+//              of the operator), guessed from the last step, checked at the step's end (linear: the law within the
+//              limit; at the limit: the frozen law still past it, or the linear law started on it moving outward)
+//              and retaken from the step's start in the other mode when inconsistent; a mode change restarts
+//              Moreau-Jean on the other operator (both built once). At the limit the integral stays frozen while
+//              the frozen law is past the limit (PiTopDrive's modes +-1), else it follows the limit, k_p e + k_i I =
+//              +-T_max (the sliding motion, modes +-2); where neither mode is consistent (the limit grazed within
+//              the step) the step at the limit is kept. The mode changes at step ends only, so the limit's
+//              crossings cost O(h^2) each; no step restriction (both operators are the A-stable theta-method's, the
+//              mode choice and the integral are algebraic). Or (set_top_drive) a prescribed speed: node 0 turns at
+//              omega_SP(t) whatever it takes (StringRig's PrescribedSpeed); its dof is held out of the inclusion
+//              (at rest, decoupled), element 0 pulls node 1 from the prescribed angle, and motor_torque reports
+//              what holds node 0 on its path:
 //              J_0 d omega_SP/dt + k_t J_0 omega_SP + node 0's wall torque - element 0's torque on it (J_0 the
 //              string's node 0 inertia: a prescribed drive's own inertia is not the string's, as in StringRig);
 //   bit:       off bottom: node N carries an optional BHA inertia and a constant bit torque (0 off bottom); on
@@ -325,8 +331,10 @@ public:
     }
     TopDrive top_drive() const { return drive_; }
     bool holds_speed() const { return drive_ == TopDrive::prescribed_speed; }
-    /// The PI's torque is taken from each step's start (sampled, or limited): see the header.
-    bool explicit_drive() const { return !holds_speed() && (p_.control_period > 0.0 || p_.torque_limit > 0.0); }
+    /// The PI's torque is taken from each step's start (sampled, a zero-order hold): see the header.
+    bool explicit_drive() const { return !holds_speed() && p_.control_period > 0.0; }
+    /// The continuous PI with a torque limit: implicit, each step taken in the drive's mode (see the header).
+    bool limited_drive() const { return !holds_speed() && p_.control_period == 0.0 && p_.torque_limit > 0.0; }
     /// Under a prescribed speed: the torque that holds node 0 on omega_SP(t) [N m], from node 1's angle and speed,
     /// J_0 d omega_SP/dt + k_t J_0 omega_SP + node 0's wall torque - element 0's torque on node 0 (J_0 without
     /// I_TD: a prescribed drive's own inertia is not the string's, as StringRig's PrescribedSpeed); the wall
@@ -344,12 +352,15 @@ public:
     }
 
     /// M v' = f(t) - C v - K q + r over the N + 1 node angles, the wall contacts on the nodes with friction. With a
-    /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0; sampled (or limited), f_0 reads
-    /// `held_motor_torque`. Under a prescribed speed dof 0 is decoupled and at rest (no force, no contact), and
-    /// element 0 pulls node 1 from the prescribed angle: K(1,1), C(1,1) keep its k_0 and beta k_0, f_1 gets
-    /// k_0 theta_SP(t) + beta k_0 omega_SP(t). On bottom, node N's contact is the bit's with its wall's (captured)
-    /// or absent (`with_bit_contact` false: the bit is the lumped element bit_element()); c_b sits in C(N, N).
-    LinearMechanicalSystem system(const double* held_motor_torque = nullptr, bool with_bit_contact = true) const {
+    /// continuous PI the top drive's gains sit in C(0,0), K(0,0) and f_0 (with `integral_offset`, f_0 takes k_i times
+    /// it off: the PI's integral is theta_SP - theta_0 - offset, an integral frozen for a while behind it); sampled
+    /// (or at its limit), f_0 reads `held_motor_torque`. Under a prescribed speed dof 0 is decoupled and at rest
+    /// (no force, no contact), and element 0 pulls node 1 from the prescribed angle: K(1,1), C(1,1) keep its k_0
+    /// and beta k_0, f_1 gets k_0 theta_SP(t) + beta k_0 omega_SP(t). On bottom, node N's contact is the bit's with
+    /// its wall's (captured) or absent (`with_bit_contact` false: the bit is the lumped element bit_element()); c_b
+    /// sits in C(N, N).
+    LinearMechanicalSystem system(const double* held_motor_torque = nullptr, bool with_bit_contact = true,
+                                  const double* integral_offset = nullptr) const {
         const Eigen::Index n = static_cast<Eigen::Index>(nodes());
         std::vector<Eigen::Triplet<double>> m, c, k;
         for (Eigen::Index i = 0; i < n; ++i) {
@@ -403,6 +414,13 @@ public:
                 f(0) = *held_motor_torque;
                 f(f.size() - 1) = -bit;
             };
+        else if (integral_offset)
+            sys.force = [self, bit, integral_offset](double t, Eigen::VectorXd& f) {
+                const TorsionalStringParams& p = self.p_;
+                f(0) = p.proportional_gain * self.setpoint_speed(t) +
+                       p.integral_gain * (self.setpoint_angle(t) - *integral_offset);
+                f(f.size() - 1) = -bit;
+            };
         else
             sys.force = [self, bit](double t, Eigen::VectorXd& f) {
                 const TorsionalStringParams& p = self.p_;
@@ -439,8 +457,8 @@ public:
         detail::require_positive("TorsionalString", "switch_tolerance", switch_tolerance);
         if (treatment == BitTreatment::exact && p_.torque_limit > 0.0)  // said here, not when the run starts
             detail::reject("TorsionalString", "torque_limit",
-                           "0 (no limit) with the exact bit (the limited PI's update at each step's start would be "
-                           "a switch of its own)", p_.torque_limit);
+                           "0 (no limit) with the exact bit (the limited PI's mode changes at step ends would be "
+                           "switches of their own)", p_.torque_limit);
         treatment_ = treatment;
         switch_tolerance_ = switch_tolerance;
         return *this;
@@ -531,7 +549,8 @@ private:
 
 /// One run of a TorsionalString, step by step (the Stepper of solve/time_stepping.hpp): Moreau-Jean over the whole
 /// string with the bit captured (its slip level at each step's midpoint speed, LumpedFriction's rule), or
-/// MoreauJeanEvents with the bit as its lumped element (exact); a sampled PI updated on its own grid.
+/// MoreauJeanEvents with the bit as its lumped element (exact); a sampled PI updated on its own grid; a limited
+/// continuous PI's mode chosen per step (the header).
 class TorsionalString::Stepper {
 public:
     Stepper(const TorsionalString& model, const TimeStepping& setup)
@@ -539,13 +558,9 @@ public:
         const TorsionalStringParams& p = model.params();
         sampled_ = p.control_period > 0.0;
         explicit_drive_ = model.explicit_drive();
-        per_control_ = sampled_ ? steps_per("TorsionalString", "control_period", p.control_period, h_)
-                                : explicit_drive_ ? 1 : 0;
+        limited_ = model.limited_drive();
+        per_control_ = sampled_ ? steps_per("TorsionalString", "control_period", p.control_period, h_) : 0;
         exact_ = model.bit_on_bottom() && model.bit_treatment() == BitTreatment::exact;
-        if (explicit_drive_ && !sampled_ && !(h_ * p.proportional_gain < p.top_drive_inertia +
-                                                                          model.lumped().node_inertia[0]))
-            detail::reject("TorsionalString", "step",
-                           "below (I_TD + J_0) / k_p with a torque limit (the limited PI is explicit)", h_);
         const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n_);
         MoreauJeanOptions o;
         o.step = setup.step;
@@ -559,7 +574,7 @@ public:
             if (sampled_)  // the hold's sampling instants would be switches of their own
                 detail::reject("TorsionalString", "control_period", "0 (a continuous PI) with the exact bit",
                                p.control_period);
-            if (explicit_drive_)  // its update at each step's start would be one too
+            if (limited_)  // its mode changes at step ends would be switches of their own
                 detail::reject("TorsionalString", "torque_limit", "0 (no limit) with the exact bit", p.torque_limit);
             MoreauJeanEventsOptions e;
             e.steps = std::move(o);
@@ -567,6 +582,17 @@ public:
             events_driver_ = std::make_unique<MoreauJeanEvents<LumpedFriction>>(
                 model.system(nullptr, false), std::vector<LumpedFriction>{model.bit_element()}, std::move(e), zero,
                 zero, setup.t_start);
+        } else if (limited_) {
+            // both operators built once; a mode change restarts Moreau-Jean on the other from the step's start
+            linear_system_ = model.system(nullptr, true, &control_->offset);
+            limited_system_ = model.system(&control_->held);
+            options_ = o;
+            integral_ = model.setpoint_angle(setup.t_start);  // theta_SP - theta_0, as the unlimited PI's spring
+            const double u = demand(setup.t_start, 0.0, integral_);
+            side_ = std::abs(u) > p.torque_limit ? sign(u) : 0;
+            step_side_ = side_;
+            start_ = Start{setup.t_start, zero, zero, 0.0};
+            restart(side_);
         } else {
             mj_ = std::make_unique<MoreauJean>(model.system(explicit_drive_ ? &control_->held : nullptr), std::move(o),
                                                zero, zero, setup.t_start);
@@ -593,12 +619,14 @@ public:
             return;
         }
         kept_ = keep_start;
-        if (keep_start) start_ = Start{mj_->time(), mj_->positions(), mj_->velocities(), control_->held};
-        MoreauJean& mj = *mj_;
+        if (keep_start || limited_) start_ = Start{mj_->time(), mj_->positions(), mj_->velocities(), control_->held};
         const Eigen::Index last = n_ - 1;
-        const double w = mj.velocities()(last);
-        if (ts_.bit_on_bottom()) {  // the bit's slip level at the step's midpoint speed (LumpedFriction's rule)
-            double level = ts_.bit_kinetic_torque(w);
+        const double w = mj_->velocities()(last);
+        const bool level_moves = ts_.bit_on_bottom();
+        double level = 0.0;
+        if (level_moves) {  // the bit's slip level at the step's midpoint speed (LumpedFriction's rule)
+            const MoreauJean& mj = *mj_;
+            level = ts_.bit_kinetic_torque(w);
             if (w != 0.0) {
                 const MechanicalView at(mj.time(), mj.positions(), mj.velocities(), mj.contact_forces(), mj.system(),
                                         scratch_);
@@ -607,15 +635,19 @@ public:
                                            mj.system().mass.coeff(last, last);
                 level = ts_.bit_kinetic_torque(std::max(0.0, dir * mid));
             }
-            mj.set_contact_bounds(mj.system().contacts.size() - 1, ts_.bit_static_torque(), level);
         }
-        mj.step();
+        const auto take = [&] {  // one step of the current operator from the step's start
+            if (level_moves) mj_->set_contact_bounds(mj_->system().contacts.size() - 1, ts_.bit_static_torque(), level);
+            mj_->step();
+        };
+        if (limited_) step_limited(take);
+        else take();
         ++steps_;
         if (explicit_drive_ && steps_ % per_control_ == 0) control();
-        const double after = mj.velocities()(last);
+        const double after = mj_->velocities()(last);
         const int before_mode = sign(w), after_mode = sign(after);
         if (before_mode != after_mode)  // a release counts from the step's start (the bit broke loose within it)
-            add_event(before_mode == 0 ? mj.time() - h_ : mj.time(), before_mode, after_mode);
+            add_event(before_mode == 0 ? mj_->time() - h_ : mj_->time(), before_mode, after_mode);
     }
 
     /// Columns and mode at t in the last step: its end, or (when kept) the state linear between its ends.
@@ -647,10 +679,16 @@ public:
         const auto speed = [&](Eigen::Index i) { return i == 0 && held_speed ? ts_.setpoint_speed(t) : (*v)(i); };
         out[0] = (*v)(n_ - 1);
         out[1] = speed(0);
-        out[2] = held_speed       ? ts_.held_torque(t, (*q)(1), (*v)(1))
-                 : explicit_drive_ ? held
-                                   : p.proportional_gain * (ts_.setpoint_speed(t) - (*v)(0)) +
-                                         p.integral_gain * (ts_.setpoint_angle(t) - (*q)(0));
+        if (held_speed) out[2] = ts_.held_torque(t, (*q)(1), (*v)(1));
+        else if (explicit_drive_) out[2] = held;
+        else if (limited_)  // the step's mode: +-T_max, or the PI law with its integral (within the limit at the ends)
+            out[2] = step_side_ != 0
+                         ? step_side_ * p.torque_limit
+                         : std::clamp(demand(t, (*v)(0), ts_.setpoint_angle(t) - (*q)(0) - control_->offset),
+                                      -p.torque_limit, p.torque_limit);
+        else
+            out[2] = p.proportional_gain * (ts_.setpoint_speed(t) - (*v)(0)) +
+                     p.integral_gain * (ts_.setpoint_angle(t) - (*q)(0));
         Eigen::Index stuck = 0;
         const double slow = ts_.slow_speed();
         for (Eigen::Index i = 0; i < n_; ++i) stuck += (slow > 0.0 ? std::abs(speed(i)) < slow : speed(i) == 0.0) ? 1 : 0;
@@ -666,6 +704,19 @@ public:
         return (exact_ ? events_driver_->contact_forces() : mj_->contact_forces())(n_ - 1);
     }
     const std::vector<Event>& events() const { return events_; }
+    /// The limited PI's integral int e at the last step's end (frozen while limited; the unlimited PI's is
+    /// theta_SP - theta_0) and its mode over that step: 0 linear, +-1 at +-T_max.
+    double drive_integral() const { return integral_; }
+    int drive_side() const { return step_side_; }
+    /// The captured string's node angles and speeds at the last step's end.
+    const Eigen::VectorXd& positions() const { return exact_ ? events_driver_->positions() : mj_->positions(); }
+    const Eigen::VectorXd& velocities() const { return exact_ ? events_driver_->velocities() : mj_->velocities(); }
+    /// The contact torques of the last step, per node (0 where there is none).
+    const Eigen::VectorXd& contact_forces() const {
+        return exact_ ? events_driver_->contact_forces() : mj_->contact_forces();
+    }
+    /// Steps retaken in the limited PI's other mode (the step's guess was inconsistent at its end).
+    long retaken_steps() const { return retaken_; }
     void add_stats(SolverStats& stats) const {
         MoreauJean::Statistics s;
         if (exact_) {
@@ -675,6 +726,14 @@ public:
             stats.restarts = e.restarts;
         } else {
             s = mj_->statistics();
+            if (limited_) {  // the operators replaced at mode changes, and the steps retaken: not counted as steps
+                s.factorisations += retired_.factorisations;
+                s.solves += retired_.solves;
+                s.contact_switches += retired_.contact_switches;
+                s.steps = steps_;
+                stats.restarts = restarts_;
+                stats.location_trials = retaken_;
+            }
         }
         stats.steps = s.steps;
         stats.factorisations = s.factorisations;
@@ -683,9 +742,10 @@ public:
     }
 
 private:
-    /// The sampled PI's state: its output is held between samples (the MoreauJean force reads `held`).
+    /// The sampled PI's state: its output is held between samples (the MoreauJean force reads `held`). The limited
+    /// continuous PI: `held` the torque at the limit, `offset` what its linear operator takes off the integral.
     struct Control {
-        double held = 0.0, setpoint = 0.0, integral = 0.0;
+        double held = 0.0, setpoint = 0.0, integral = 0.0, offset = 0.0;
     };
     struct Start {
         double time = 0.0;
@@ -695,20 +755,116 @@ private:
 
     static int sign(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 
-    /// A&S MAIN.m at a sampling instant: the set-point filter, then tau_m, then int e. The continuous limited PI
-    /// at each step's start: the set-point itself, dt = h. With a limit (PiTopDrive's law): tau_m clamped to
-    /// +-T_max and int e frozen while it is (anti-windup).
+    /// A&S MAIN.m at a sampling instant: the set-point filter, then tau_m, then int e. With a limit (PiTopDrive's
+    /// law): tau_m clamped to +-T_max and int e frozen while it is (anti-windup).
     void control() {
         const TorsionalStringParams& p = ts_.params();
         const double T = p.setpoint_time_constant, w = mj_->velocities()(0), limit = p.torque_limit;
-        const double dt = sampled_ ? p.control_period : h_;
+        const double dt = p.control_period;
         Control& c = *control_;
-        if (sampled_) c.setpoint = T > 0.0 ? c.setpoint + (p.speed_setpoint - c.setpoint) * dt / T : p.speed_setpoint;
-        else c.setpoint = ts_.setpoint_speed(mj_->time());
-        const double demand = p.proportional_gain * (c.setpoint - w) + p.integral_gain * c.integral;
-        const bool limited = limit > 0.0 && std::abs(demand) > limit;
-        c.held = limited ? std::copysign(limit, demand) : demand;
+        c.setpoint = T > 0.0 ? c.setpoint + (p.speed_setpoint - c.setpoint) * dt / T : p.speed_setpoint;
+        const double u = p.proportional_gain * (c.setpoint - w) + p.integral_gain * c.integral;
+        const bool limited = limit > 0.0 && std::abs(u) > limit;
+        c.held = limited ? std::copysign(limit, u) : u;
         if (!limited) c.integral += dt * (c.setpoint - w);
+    }
+
+    /// The continuous PI's law before the limit at time t, top-drive speed w and integral I: k_p e + k_i I.
+    double demand(double t, double w, double integral) const {
+        const TorsionalStringParams& p = ts_.params();
+        return p.proportional_gain * (ts_.setpoint_speed(t) - w) + p.integral_gain * integral;
+    }
+
+    /// Moreau-Jean on the operator of `side` (0 linear: the PI as damper and spring with the integral's offset;
+    /// +-1: tau_m = +-T_max, the PI out of the operator) from the step's start (start_, integral_).
+    void restart(int side) {
+        const TorsionalStringParams& p = ts_.params();
+        if (mj_) {
+            const MoreauJean::Statistics& s = mj_->statistics();
+            retired_.factorisations += s.factorisations;
+            retired_.solves += s.solves;
+            retired_.contact_switches += s.contact_switches;
+            ++restarts_;
+        }
+        control_->held = side * p.torque_limit;
+        control_->offset = ts_.setpoint_angle(start_.time) - start_.q(0) - integral_;
+        mj_ = std::make_unique<MoreauJean>(side == 0 ? linear_system_ : limited_system_, options_, start_.q, start_.v,
+                                           start_.time);
+        operator_side_ = side;
+    }
+
+    /// One step of the torque-limited continuous PI, implicit: the step taken in the drive's mode guessed from the
+    /// last (linear, or at the limit on one side), checked at its end and retaken from its start in the other mode
+    /// when inconsistent. Linear is consistent when the PI law ends within the limit; at the limit on side s while
+    /// the frozen law (the integral held) ends past it (PiTopDrive's modes +-1, the integral stays frozen) or the
+    /// linear law, started on the limit, moves outward over the step: k_p (e_1 - e_0) + k_i int e, times s, >= 0
+    /// (the sliding motion, modes +-2: the integral follows the limit, k_p e + k_i I = s T_max at the step's end).
+    /// Where neither mode is consistent (the limit grazed within the step) the step at the limit is kept, its
+    /// integral as the sliding motion's, and the next step starts linear.
+    template <class Take>
+    void step_limited(const Take& take) {
+        const TorsionalStringParams& p = ts_.params();
+        const double limit = p.torque_limit, t0 = start_.time, q0 = start_.q(0), i0 = integral_;
+        const double e0 = ts_.setpoint_speed(t0) - start_.v(0);
+        // the linear step's end: its integral and law
+        const auto linear_end = [&](double& integral) {
+            integral = ts_.setpoint_angle(mj_->time()) - mj_->positions()(0) - control_->offset;
+            return demand(mj_->time(), mj_->velocities()(0), integral);
+        };
+        // the step at the limit on side s: consistent, and its integral at the end
+        const auto limited_end = [&](int s, double& integral) {
+            const double t1 = mj_->time(), e1 = ts_.setpoint_speed(t1) - mj_->velocities()(0);
+            const double gathered = ts_.setpoint_angle(t1) - ts_.setpoint_angle(t0) - (mj_->positions()(0) - q0);
+            const bool frozen_out = s * demand(t1, mj_->velocities()(0), i0) >= limit;
+            const bool pushed_out = p.integral_gain > 0.0 &&
+                                    s * (p.proportional_gain * (e1 - e0) + p.integral_gain * gathered) >= 0.0;
+            const double follow = p.integral_gain > 0.0 ? (s * limit - p.proportional_gain * e1) / p.integral_gain : i0;
+            integral = s * std::max(s * i0, s * follow);
+            return frozen_out || pushed_out;
+        };
+        const auto accept_limited = [&](int s, bool consistent) {
+            double integral = 0.0;
+            limited_end(s, integral);
+            integral_ = integral;
+            step_side_ = s;
+            side_ = consistent ? s : 0;  // grazed: the next step starts linear
+        };
+        const auto retake = [&](int side) {
+            ++retaken_;
+            restart(side);
+            take();
+        };
+        if (operator_side_ != side_) restart(side_);
+        take();
+        double integral = 0.0;
+        if (side_ == 0) {
+            const double u = linear_end(integral);
+            if (std::abs(u) <= limit) {
+                integral_ = integral;
+                step_side_ = 0;
+                return;
+            }
+            const int s = sign(u);
+            retake(s);
+            accept_limited(s, limited_end(s, integral));
+            return;
+        }
+        const int s = side_;
+        if (limited_end(s, integral)) {
+            accept_limited(s, true);
+            return;
+        }
+        retake(0);  // released from the limit?
+        const double u = linear_end(integral);
+        if (std::abs(u) <= limit) {
+            integral_ = integral;
+            step_side_ = 0;
+            side_ = 0;
+            return;
+        }
+        const int back = sign(u);  // the limit grazed (or, in one step, the other limit reached): at the limit
+        retake(back);
+        accept_limited(back, limited_end(back, integral));
     }
 
     void add_event(double t, int before, int after) {
@@ -726,11 +882,19 @@ private:
     const TorsionalString& ts_;
     double h_;
     Eigen::Index n_;
-    bool sampled_ = false, explicit_drive_ = false, exact_ = false, kept_ = false;
+    bool sampled_ = false, explicit_drive_ = false, limited_ = false, exact_ = false, kept_ = false;
     long per_control_ = 0, steps_ = 0;
-    std::unique_ptr<Control> control_;  // a stable address for the force closure
+    std::unique_ptr<Control> control_;  // a stable address for the force closures
     std::unique_ptr<MoreauJean> mj_;
     std::unique_ptr<MoreauJeanEvents<LumpedFriction>> events_driver_;
+    // the limited continuous PI: its two operators, its integral, the side guessed for the next step (0 linear),
+    // the side of the step taken last and of the operator running
+    LinearMechanicalSystem linear_system_, limited_system_;
+    MoreauJeanOptions options_;
+    double integral_ = 0.0;
+    int side_ = 0, step_side_ = 0, operator_side_ = 2;
+    long restarts_ = 0, retaken_ = 0;
+    MoreauJean::Statistics retired_;
     Start start_;
     std::vector<Event> events_;
     mutable Eigen::VectorXd scratch_, interpolated_q_, interpolated_v_;
