@@ -382,7 +382,10 @@ elements of equal length, node 0 at the top, node N at the bit), in torsion and 
 (k_t, damping_rate: Aarsnes & Shor's viscous damping against absolute rotation, J_s,i node i's string inertia.)
 Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
 +-T_max) with anti-windup, or a prescribed surface speed; either ramps w_set from rest as w_set (1 - exp(-t / T_SP))
-with setpoint_time_constant T_SP > 0. A wall contact at each chosen node with `friction` (any
+with setpoint_time_constant T_SP > 0. With control_period T_c > 0 the PI is sampled at t = k T_c and its torque held
+between samples (Aarsnes & Shor's MAIN.m, as TorsionalString's sampled PI: the set-point filtered by forward Euler,
+sp += (w_set - sp) T_c / T_SP, the demand k_p (sp - w_0) + k_i I held within +-T_max, I += T_c (sp - w_0) unless
+limited); each sample is an event top_drive.sample. A wall contact at each chosen node with `friction` (any
 law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
 inclined hole's buoyed weight w_b sin I (per node with node_inclinations). Torsion-only: exact per-contact stick;
 axial=True: friction against the resultant of axial and circumferential sliding (paper 000's friction vector),
@@ -422,8 +425,9 @@ start_hanging : bool = False
     Start (axial runs) with the string hanging at rest from the top node without wall friction: each element
     stretched by the buoyed weight along the hole below it (less W on bottom), so no axial transient.
 
-States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
-law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
+States, node by node: speed_error_integral (a sampled PI's also held_motor_torque [N m], sampled_setpoint [rad/s]
+and next_sample, the index k of the next sample at k T_c), then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]],
+[the wall law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
 wall_friction_work, damping_work, bit_work (drive + hoist + excitation = energy change + friction + damping + bit).
 The Result's friction_force is the total wall friction torque [N m]; its mode counts the stuck wall contacts.
 frictionsim.drillstring reads bit and surface speed, surface torque and stuck contacts out of a Result.

@@ -2019,7 +2019,10 @@ class StringRig:
     (k_t, damping_rate: Aarsnes & Shor's viscous damping against absolute rotation, J_s,i node i's string inertia.)
     Top drive: PI speed control of a motor of inertia J_td, T_m = clamp(k_p (w_set - w_0) + k_i int (w_set - w_0) dt,
     +-T_max) with anti-windup, or a prescribed surface speed; either ramps w_set from rest as w_set (1 - exp(-t / T_SP))
-    with setpoint_time_constant T_SP > 0. A wall contact at each chosen node with `friction` (any
+    with setpoint_time_constant T_SP > 0. With control_period T_c > 0 the PI is sampled at t = k T_c and its torque held
+    between samples (Aarsnes & Shor's MAIN.m, as TorsionalString's sampled PI: the set-point filtered by forward Euler,
+    sp += (w_set - sp) T_c / T_SP, the demand k_p (sp - w_0) + k_i I held within +-T_max, I += T_c (sp - w_0) unless
+    limited); each sample is an event top_drive.sample. A wall contact at each chosen node with `friction` (any
     law of fs.FRICTION_LAWS or a CallableLaw) at the pipe's outer radius; its normal force given or the straight
     inclined hole's buoyed weight w_b sin I (per node with node_inclinations). Torsion-only: exact per-contact stick;
     axial=True: friction against the resultant of axial and circumferential sliding (paper 000's friction vector),
@@ -2059,8 +2062,9 @@ class StringRig:
         Start (axial runs) with the string hanging at rest from the top node without wall friction: each element
         stretched by the buoyed weight along the hole below it (less W on bottom), so no axial transient.
     
-    States, node by node: speed_error_integral, then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]], [the wall
-    law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
+    States, node by node: speed_error_integral (a sampled PI's also held_motor_torque [N m], sampled_setpoint [rad/s]
+    and next_sample, the index k of the next sample at k T_c), then theta_i [rad], omega_i [rad/s], [u_i [m], v_i [m/s]],
+    [the wall law's states]_i, the bit law's states, and the work integrals [J] drive_work, hoist_work, excitation_work,
     wall_friction_work, damping_work, bit_work (drive + hoist + excitation = energy change + friction + damping + bit).
     The Result's friction_force is the total wall friction torque [N m]; its mode counts the stuck wall contacts.
     frictionsim.drillstring reads bit and surface speed, surface torque and stuck contacts out of a Result.
@@ -2105,10 +2109,12 @@ class StringRig:
         k_t [1/s], non-negative and finite: Viscous damping against absolute rotation (Aarsnes & Shor's k_t): torque k_t J_i w_i at each node, J_i the node's string inertia (k_t rho J w per unit length).
     setpoint_time_constant : float = 0
         T_SP [s], non-negative and finite: Set-point ramp: the set (or prescribed) speed is w_set (1 - exp(-t / T_SP)) from rest; 0: a step.
+    control_period : float = 0
+        T_c [s], non-negative and finite: Sampling period of the PI drive, zero-order hold (Aarsnes & Shor's MAIN.m: the set-point filtered by forward Euler at each sample); 0: a continuous PI. Not with a prescribed speed.
     """
     outputs: typing.ClassVar[tuple] = (('friction_force', 'N m', 'the total wall friction torque, sum of r_i times the circumferential friction'), ('speed_error_integral', 'rad', "the PI drive's int (w_set - w_0) dt"), ('theta_*', 'rad', 'angle of node i'), ('omega_*', 'rad/s', 'speed of node i'), ('u_*', 'm', 'axial displacement of node i (axial runs)'), ('v_*', 'm/s', 'axial speed of node i (axial runs)'), ('slip_axis_*', 'rad', "the planar wall contact's reference axis (axial runs, a law with reversal memory)"), ('drive_work', 'J', "the top drive's work on node 0"), ('hoist_work', 'J', "the hook's work on the top node (axial runs)"), ('excitation_work', 'J', "the axial excitation's work"), ('wall_friction_work', 'J', "the wall contacts' friction work"), ('damping_work', 'J', "the dampers' work: the elements' beta k_e and k_t's at the nodes"), ('bit_work', 'J', "the bit's work: drive + hoist + excitation = energy change + friction + damping + bit"), ('mode', '1', 'stuck wall contacts (a count)'))
     parameters: typing.ClassVar[tuple]
-    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.283185307179586, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, damping_rate: float = 0, setpoint_time_constant: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
+    def __init__(self, string: DrillString, friction: typing.Any, *, damping_time: float = 0, top_drive_inertia: float = 500, surface_speed: float = 6.283185307179586, proportional_gain: float = 5000, integral_gain: float = 2000, torque_limit: float = 60000, mud_density: float = 1200, inclination: float = 0, hook_speed: float = 0, hook_load: float = 0, excitation_amplitude: float = 0, excitation_frequency: float = 0, stick_speed: float = 0.0001, initial_speed: float = 0, initial_axial_speed: float = 0, end_inertia: float = 0, end_mass: float = 0, damping_rate: float = 0, setpoint_time_constant: float = 0, control_period: float = 0, bit: NavarroLopezBit | None = None, weight_on_bit: float | None = None, elements: int = 20, top_drive: str = 'pi_motor', axial: bool = False, hoisting: str = 'hook_speed', wall_contacts: bool = True, contact_nodes: collections.abc.Sequence[int] | None = None, normal_forces: collections.abc.Sequence[float] | None = None, excitation_node: int = 0, node_inclinations: collections.abc.Sequence[float] | None = None, start_hanging: bool = False) -> None:
         """
         The string, the wall law, then the rig's set-up and parameters by keyword (see the class docstring).
         """
@@ -2154,6 +2160,11 @@ class StringRig:
     def contact_nodes(self) -> list[int]:
         """
         The nodes with a wall contact (as the rig placed them).
+        """
+    @property
+    def control_period(self) -> float:
+        """
+        T_c [s]: Sampling period of the PI drive, zero-order hold (Aarsnes & Shor's MAIN.m: the set-point filtered by forward Euler at each sample); 0: a continuous PI. Not with a prescribed speed.
         """
     @property
     def damping_rate(self) -> float:

@@ -276,7 +276,7 @@ def test_keywords_properties_repr_and_pickle_round_trip():
     assert not hasattr(rig, "bit_radius")  # the bit's table stays on the bit
     assert rig.bit.static_coefficient == 0.9 and rig.weight_on_bit == 5e4 and rig.period is None
     plain = fs.StringRig(string, fs.Coulomb(0.3))
-    assert len(fs.StringRig.parameters) == 19
+    assert len(fs.StringRig.parameters) == 20
     for p in fs.StringRig.parameters:  # every table field: a keyword with its default, a property, documented
         assert getattr(plain, p.name) == p.default and f"{p.name} : float = " in fs.StringRig.__doc__
     # the radius of a node on the pipe / collar boundary is the collar's
