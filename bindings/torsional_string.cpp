@@ -275,8 +275,8 @@ event and drowns in them at a thousand contacts).
                omega_c a slipping node keeps the static level (A&S eq 4)
     top drive: I_TD at node 0 under the PI tau_m = k_p e + k_i int e, e = omega_SP - omega_TD (A&S eqs 7-10),
                continuous or sampled every control_period (zero-order hold, as A&S's code); with torque_limit
-               T_max > 0 clamped to +-T_max, the integral frozen while limited (StringRig's PI drive; the
-               continuous limited PI is then taken from each step's start: first order in the step); or
+               T_max > 0 clamped to +-T_max, the integral frozen while limited (StringRig's PI drive; implicit:
+               each step taken linear or at the limit and checked at its end, no step restriction); or
                top_drive="prescribed_speed": node 0 turns at omega_SP(t), motor_torque what that takes
     bit:       off bottom (weight_on_bit = 0): the bit torque T_b; on bottom: the velocity-weakening bit (a
                NavarroLopezBit under weight_on_bit) merged with node N's wall contact
@@ -303,7 +303,7 @@ treatment : {"captured", "mixed", "exact", "auto"}
     "explicit_projection", its "automatic"); "mixed": the bit's stick and slip located exactly (a lumped switch of
     the run, restarted there), the walls captured; needs the bit on bottom and no torque_limit; "exact": every
     contact's stick and slip located as an event on the event-driven StringRig of the same string (any
-    event-driven method; no stick band, sampled PI, bit_torque, or wall at node 0: vertical at the top); "auto":
+    event-driven method; no stick band, bit_torque off bottom, or wall at node 0: vertical at the top); "auto":
     the measured rule (fs.automatic_treatment: exact up to 30 wall contacts, mixed up to 300 on bottom, captured
     beyond). The Result has the same columns under every treatment; under "exact" its events are every located
     switch (the time-stepping logs the bit's), and a stop condition reads bit_speed or top_drive_speed.

@@ -112,9 +112,10 @@ TEST_CASE("captured drive: a rigid string spun up at the torque limit accelerate
     REQUIRE(r.t[released] > 4.0);
     for (std::size_t row = 0; row < released; ++row) CHECK(r.state(row, tau) == p.torque_limit);  // exactly T_max
     // the first row off the limit: the PI law with the integral gathered since the release only, at most one
-    // output interval's k_i e dt (an integral wound up over the 5 s at the limit, ~400 rad, would hold the limit)
+    // output interval's and one step's k_i e dt (the implicit limited PI leaves the limit one step after the frozen
+    // law would; an integral wound up over the 5 s at the limit, ~400 rad, would hold the limit)
     const double error = p.speed_setpoint - r.state(released, top);
-    CHECK(std::abs(r.state(released, tau) - p.proportional_gain * error) <= p.integral_gain * error * 0.01);
+    CHECK(std::abs(r.state(released, tau) - p.proportional_gain * error) <= p.integral_gain * error * (0.01 + h));
     CHECK(r.state(released - 1, top) <= release_speed + 1e-9);
     CHECK(r.state(released, top) >= release_speed - slope * 0.01);
     // the uniform acceleration between 1 s (the step's transient damped) and 4 s: theta = 1/2 integrates it exactly
@@ -175,11 +176,12 @@ TEST_CASE("captured drive: the torque-limited PI converges to StringRig's PiTopD
     INFO("RMS bit speed error " << speed_error.front() << " -> " << speed_error.back() << " rad/s (order "
          << speed_order << "), motor torque " << torque_error.front() << " -> " << torque_error.back()
          << " N m (order " << torque_order << ")");
-    // measured: speed 7.96e-3 -> 5.06e-4 (order 0.99), torque 3.55 -> 0.18 N m (order 1.05): the explicit limited
-    // PI's first order
-    CHECK(speed_order > 0.9);
-    CHECK(torque_order > 0.9);
-    CHECK(speed_error.back() < 1e-3);  // rad/s, against a peak of 6.7
+    // measured: the explicit limited PI of before gave speed 7.96e-3 -> 5.06e-4 (order 0.99), torque 3.55 -> 0.18
+    // N m (order 1.05); the implicit one 4.2e-4 -> 3.3e-5 rad/s (order 0.89), 13x smaller at every step: the walls'
+    // first-order capture, as the unlimited PI's
+    CHECK(speed_order > 0.8);
+    CHECK(torque_order > 0.8);
+    CHECK(speed_error.back() < 1e-4);  // rad/s, against a peak of 6.7
 }
 
 TEST_CASE("captured drive: the sampled PI (zero-order hold) converges to StringRig's SampledPiTopDrive, first order "
@@ -301,8 +303,9 @@ TEST_CASE("captured drive: bad drive inputs name the parameter", "[mixed][drive]
     p.torque_limit = 1e4;
     TorsionalString limited = field_string(p, 4);
     CHECK(rejected_parameter([&] { limited.set_top_drive(TopDrive::prescribed_speed); }) == "torque_limit");
-    // the explicit limited PI's stability: h k_p below I_TD + J_0
-    CHECK(rejected_parameter([&] { (void)simulate(limited, 1.0, stepping(0.5, {})); }) == "step");
+    // the limited PI is implicit: a step far beyond h k_p = I_TD + J_0 runs (tests/aarsnes_shor.test.cpp's
+    // [implicit_drive] checks it converges)
+    CHECK(simulate(limited, 1.0, stepping(0.5, {})).completed);
     p.torque_limit = 0.0;
     p.control_period = 0.01;
     TorsionalString sampled = field_string(p, 4);

@@ -172,7 +172,10 @@ TEST_CASE("the string models of EngineRigs declare their outputs: per node, work
         for (const std::string& n : remembering.state_names())
             if (n.rfind("slip_axis_", 0) == 0) c.push_back(n);
         CHECK(!c.empty());
-        check_string_outputs<Entry>({a, b, c});
+        StringRigParams sampling;  // the sampled PI's states
+        sampling.control_period = 0.01;
+        const typename Entry::template of<Coulomb> sampled(string, sampling, torsion, Coulomb(0.3));
+        check_string_outputs<Entry>({a, b, c, sampled.state_names()});
     });
     // TorsionalString: its four columns
     for_each_rig<RigConstruction::time_stepping>(EngineRigs{}, [&](auto tag) {

@@ -45,12 +45,15 @@ struct StringRigParams {
     static constexpr const char* rig_name = "StringRig";  ///< as Python and the rig list name it
     /// The Result's columns beside t, the wall law's states (numbered per node, theta_3 as dahl_deflection_3) and the
     /// bit law's (bit_*): a row name_* is a state per node 0 (top) .. N (bit); u_* and v_* only in axial runs,
-    /// speed_error_integral only under the PI drive. The mode column counts the stuck wall contacts. A sampled PI's
-    /// held_motor_torque (N m), sampled_setpoint (rad/s) and next_sample (an index) are not declared yet.
-    static constexpr std::array<RigOutput, 14> outputs() {
+    /// speed_error_integral only under the PI drive, held_motor_torque, sampled_setpoint and next_sample only under
+    /// the sampled PI (control_period > 0). The mode column counts the stuck wall contacts.
+    static constexpr std::array<RigOutput, 17> outputs() {
         return {{
             {"friction_force", "N m", "the total wall friction torque, sum of r_i times the circumferential friction"},
             {"speed_error_integral", "rad", "the PI drive's int (w_set - w_0) dt"},
+            {"held_motor_torque", "N m", "the sampled PI's torque, held between samples (control_period > 0)"},
+            {"sampled_setpoint", "rad/s", "the sampled PI's filtered set-point at the last sample"},
+            {"next_sample", "1", "the index k of the sampled PI's next sample, at k T_c"},
             {"theta_*", "rad", "angle of node i"},
             {"omega_*", "rad/s", "speed of node i"},
             {"u_*", "m", "axial displacement of node i (axial runs)"},
