@@ -79,7 +79,7 @@ SHARED = {"surface_speed": "speed_setpoint", "end_inertia": "bha_inertia", "elem
           "proportional_gain": "proportional_gain", "integral_gain": "integral_gain",
           "damping_time": "damping_time", "damping_rate": "damping_rate",
           "setpoint_time_constant": "setpoint_time_constant", "torque_limit": "torque_limit",
-          "top_drive": "top_drive"}
+          "control_period": "control_period", "top_drive": "top_drive"}
 
 
 #: The measured rule (C++ string/treatment.hpp): the treatment a string of so many wall contacts runs cheapest in.
@@ -150,8 +150,8 @@ def string_model(string: DrillString, friction, *, treatment: str = "auto", **ke
     drive, gains, torque limit, mud, inclination, a step set-point, 20 elements), not the captured engine's own (A&S
     Well B's drive, a 60 degree hole, a 1 s set-point ramp, 200 elements), so "auto" changes how the contacts are
     solved, not the string. One exception: StringRig's default torque limit (60 kN m) is not given to the captured
-    and mixed strings (with a limit the captured string's PI is explicit from each step's start, first order in h
-    where the unlimited one is implicit; the mixed one cannot carry a limit at all), so their motor torque is
+    and mixed strings (the mixed one cannot carry a limit at all, and the captured one keeps the mixed one's
+    drive), so their motor torque is
     unlimited unless ``torque_limit`` is given: the treatments differ only where the motor would pass 60 kN m. A
     given ``torque_limit`` follows StringRig's rule (positive) under every treatment. One difference of lumping
     stays: a StringRig has no wall at node 0 (the top drive's), the captured

@@ -101,7 +101,7 @@ def test_contact_solver_by_name_gives_the_active_sets_run_on_a_monotone_law():
     (lambda: field_string(top_drive="prescribed_speed", torque_limit=1e4), "torque_limit"),
     (lambda: field_string(top_drive="prescribed_speed", control_period=0.01), "control_period"),
     (lambda: fs.aarsnes_shor_well_b(elements=10, top_drive="prescribed_speed"), "control_period"),  # its sampled PI
-    (lambda: fs.simulate(field_string(torque_limit=1e4), 1.0, method="moreau_jean", step=0.5), "step"),
+    (lambda: fs.simulate(field_string(torque_limit=1e4), 1.0, method="moreau_jean", step=0.3), "step"),  # not k h
     (lambda: fs.simulate(field_string(), 0.1, method="explicit_projection", step=1e-4,
                          contact_solver="projected_gauss_seidel"), "contact_solver"),
     (lambda: fs.simulate(fs.TorsionalRig(fs.Coulomb(0.3)), 0.1, method="dormand_prince",
@@ -138,3 +138,13 @@ def test_drive_keywords_rebuild_and_pickle_and_map_from_stringrigs():
     model = ds.string_model(fs.DrillString([fs.PipeSection(length=1000.0)]), fs.Coulomb(0.18, 0.3),
                             treatment="captured", elements=16, torque_limit=7e3)
     assert model.torque_limit == 7e3
+
+
+def test_the_limited_pi_is_implicit_so_a_step_past_the_old_bound_runs_within_the_limit():
+    """The captured string's torque-limited PI is implicit (each step taken linear or at the limit and checked at
+    its end): a step of 0.5 s, far past h k_p = I_TD + J_0 where the explicit law of before was refused, runs and
+    keeps the motor torque within the limit on every row."""
+    string = field_string(torque_limit=1e4)
+    run = fs.simulate(string, 10.0, method="moreau_jean", step=0.5)
+    assert run.completed
+    assert np.all(np.abs(run["motor_torque"]) <= 1e4)

@@ -72,7 +72,8 @@ def test_the_string_models_declare_their_outputs_in_cpp():
     work = dict.fromkeys(("drive_work", "hoist_work", "excitation_work", "wall_friction_work", "damping_work",
                           "bit_work"), "J")
     assert outputs.declared_outputs(fs.StringRig) == outputs.RigOutputs(
-        "N m", {"speed_error_integral": "rad", **work},
+        "N m", {"speed_error_integral": "rad", "held_motor_torque": "N m", "sampled_setpoint": "rad/s",
+                "next_sample": "1", **work},
         {"theta": "rad", "omega": "rad/s", "u": "m", "v": "m/s", "slip_axis": "rad"}, "stuck contacts")
     if fs.HAS_EIGEN:
         assert outputs.declared_outputs(fs.TorsionalString) == outputs.RigOutputs("N m", {
