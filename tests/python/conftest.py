@@ -50,3 +50,14 @@ def pytest_runtest_makereport(item, call):
 def pytest_make_collect_report(collector):
     outcome = yield
     _fail_if_extra_missing(outcome.get_result())
+
+
+def pytest_terminal_summary(terminalreporter):
+    """The hardening outcome table of the property tests that ran (tests/python/outcomes.py)."""
+    import outcomes
+
+    text = outcomes.table()
+    if text:
+        terminalreporter.write_sep("-", "hardening outcomes (generated inputs per input class)")
+        terminalreporter.write_line(text)
+        outcomes.write_table()

@@ -4,12 +4,11 @@ mutated inputs, gives either a clean rejection naming the parameter or a finite,
 ScenarioError naming the key or a valid scenario.
 
 Bounded in CI (the "ci" profile); FRICTIONSIM_HYPOTHESIS_PROFILE=long runs 20x more examples.
-FRICTIONSIM_HARDENING_TABLE=path writes the outcome counts per input class (the closing note's table).
+The outcome counts per input class go into the table of tests/python/outcomes.py (printed at the suite's end).
 """
 
 from __future__ import annotations
 
-import collections
 import concurrent.futures as cf
 import copy
 import math
@@ -22,6 +21,7 @@ from hypothesis import strategies as st
 
 import frictionsim as fs
 from frictionsim import scenario as scenario_module
+from outcomes import record
 from strategies import LAWS, OPTIONS, any_number, law_kwargs, typical, valid
 
 settings.register_profile("ci", max_examples=40, deadline=None, derandomize=True,  # the same examples every CI run
@@ -29,29 +29,11 @@ settings.register_profile("ci", max_examples=40, deadline=None, derandomize=True
 settings.register_profile("long", max_examples=800, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("FRICTIONSIM_HYPOTHESIS_PROFILE", "ci"))
 
-#: input class -> outcome -> count; written out at the end when FRICTIONSIM_HARDENING_TABLE is set
-OUTCOMES: dict = collections.defaultdict(collections.Counter)
 N = 90.0
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _hardening_table():
-    yield
-    path = os.environ.get("FRICTIONSIM_HARDENING_TABLE")
-    if not path:
-        return
-    columns = ["tried", "clean rejection", "finite result", "crash", "hang", "NaN as success", "wrong kind of error",
-               "silent nonsense"]
-    lines = ["| input class | " + " | ".join(columns) + " |", "|" + "---|" * (len(columns) + 1)]
-    for name, counts in sorted(OUTCOMES.items()):
-        tried = sum(counts.values())
-        lines.append(f"| {name} | {tried} | " + " | ".join(str(counts[c]) for c in columns[1:]) + " |")
-    with open(path, "a") as table:
-        table.write("\n".join(lines) + "\n")
-
-
 def _outcome(input_class: str, what: str) -> None:
-    OUTCOMES[input_class][what] += 1
+    record(input_class, what)
 
 
 def _finite(result: fs.Result) -> bool:
