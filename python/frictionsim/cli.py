@@ -2,7 +2,7 @@
 
     frictionsim run SCENARIO.toml [--out DIR] [--jobs N] [--format csv|netcdf|parquet]
                                                 simulate a scenario file (see frictionsim.scenario)
-    frictionsim sweep SWEEP.toml [--out DIR] [--jobs N]
+    frictionsim sweep SWEEP.toml [--out DIR] [--jobs N] [--timeout SECONDS]
                                                 a scenario over a grid of its parameters (frictionsim.scenario.
                                                 sweep_file): sweep.csv and sweep.png
     frictionsim scenarios list | copy NAME [DEST]
@@ -26,7 +26,10 @@ terminal. ``--jobs N`` runs a scenario's cases or a sweep's points in N processe
 process may use, with a warning when fewer than asked); the results are those of ``--jobs 1``, in the same order.
 
 Outputs appear all at once: everything is simulated first, then written into a temporary directory next to the
-target and moved into place (files already in the target that the command does not write are left alone).
+target and moved into place (files already in the target that the command does not write are left alone). An
+output file that exists is never replaced silently: the command refuses (exit 1), naming the file, unless
+``--force`` is given (``fit``: ``--overwrite``, its ``--force`` names the force column); a target holding an
+earlier command's metadata.json is refused before anything runs.
 Ctrl-C or SIGTERM removes that temporary directory: nothing half-written is left behind. Every command that
 writes also writes ``metadata.json`` beside its outputs (:mod:`frictionsim.provenance`: version, git revision,
 command line, rigs, solver options and statistics, time, platform).
@@ -37,9 +40,15 @@ link that leads out of it is refused unless ``--allow-outside`` is given (a file
 anywhere it likes); else ``out/<file stem>`` in the working directory (a stem that would name no folder
 below ``out/``, such as ``...toml``'s ``..``, is ``scenario`` / ``sweep`` / ``survey`` instead).
 
+``--timeout SECONDS`` (``run``, ``sweep``; else the file's solver.timeout) is the wall-clock budget of each
+simulation: of a case, of each point of a stick-slip map and of each case at each point of a sweep. A sweep's point
+or a map's point that runs out (or fails otherwise) is recorded as failed with its reason (the ``error`` column)
+and the others still run; the outputs are written and the command exits 1, one line per failed point on stderr.
+
 Exit status: 0 on success, 2 for a bad scenario, sweep file, data file or command line (``error: <file>: <key>:
-<rule>`` on stderr), 1 when a simulation stops early (with the time reached) or the outputs cannot be written,
-130 on Ctrl-C, 143 on SIGTERM. ``torque-drag`` reports a bad survey with its file, line, station and field
+<rule>`` on stderr), 1 when a simulation stops early (with the time reached), a point of a sweep or a map failed,
+or the outputs cannot be written (or would replace files without --force), 130 on Ctrl-C (the workers of --jobs
+included: they ignore SIGINT and are terminated), 143 on SIGTERM. ``torque-drag`` reports a bad survey with its file, line, station and field
 (exit 2); ``fit`` exits 1 when the fit does not converge (its outputs are written all the same, to look at).
 """
 
@@ -62,6 +71,7 @@ from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Sequ
 from . import __version__
 from .atomic import atomic_path, write_csv
 from .errors import InvalidParameterError, SimulationError
+from .scenario.staging import OutputExistsError, staged_directory
 
 __all__ = ["main", "staged_directory"]
 
@@ -174,6 +184,26 @@ def _ignore_interrupts() -> None:
 
 
 @contextmanager
+def _sigint_ignored() -> Iterator[None]:
+    """SIGINT ignored for the block, then its handler restored: processes started meanwhile inherit the ignored
+    SIGINT, through exec too (a blocked mask would not survive multiprocessing's spawn), and Python keeps it
+    ignored, so spawned workers leave a terminal's Ctrl-C (sent to the whole process group) to this process even
+    while they import. The price: a SIGINT to this process within the block (the milliseconds of starting the
+    processes, 50 ms for two spawned ones on a 2-core machine) is lost. A no-op outside the main thread."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+@contextmanager
 def _imap(jobs: int, count: int) -> Iterator[Callable[[Callable, Iterable], Iterable]]:
     """An ordered ``imap(function, items)``: the built-in map for one job, else a pool of ``jobs`` processes
     (spawned: nothing of this process's threads or handlers is inherited). Leaving the block - Ctrl-C, SIGTERM,
@@ -184,13 +214,18 @@ def _imap(jobs: int, count: int) -> Iterator[Callable[[Callable, Iterable], Iter
         return
     import multiprocessing
 
-    pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_ignore_interrupts)
+    pool = None
     try:
+        # the workers start with SIGINT ignored: a Ctrl-C to the process group while they import, before their
+        # initializer runs, kills none of them with a traceback; this process handles it
+        with _sigint_ignored():
+            pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_ignore_interrupts)
         yield pool.imap
         pool.close()
     finally:
-        pool.terminate()
-        pool.join()
+        if pool is not None:
+            pool.terminate()
+            pool.join()
 
 
 def _cpus() -> int:
@@ -246,6 +281,27 @@ def _common(jobs: bool = False) -> argparse.ArgumentParser:
     return common
 
 
+def _forcing(*names: str) -> argparse.ArgumentParser:
+    """--force (also --overwrite) of every command that writes: an output file that exists is replaced only with
+    it. ``fit`` takes --overwrite only: its --force names the friction-force column."""
+    names = names or ("--force", "--overwrite")
+    forcing = argparse.ArgumentParser(add_help=False)
+    forcing.add_argument(*names, dest="overwrite", action="store_true",
+                         help="replace output files that exist (default: refuse, naming the file)")
+    forcing.set_defaults(force_option=names[0])
+    return forcing
+
+
+def _timeout() -> argparse.ArgumentParser:
+    """--timeout of run and sweep: the wall-clock budget of each simulation."""
+    timeout = argparse.ArgumentParser(add_help=False)
+    timeout.add_argument("--timeout", type=float, metavar="SECONDS",
+                         help="wall-clock budget of each simulation, a stick-slip map's points and a sweep's "
+                              "points too (overrides the file's solver.timeout); one that runs out is a failure "
+                              "(exit 1)")
+    return timeout
+
+
 def _placement() -> argparse.ArgumentParser:
     """--out and --allow-outside of the commands that read a file naming its own output.directory (run, sweep)."""
     placement = argparse.ArgumentParser(add_help=False)
@@ -270,14 +326,13 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("-v", "--verbose", action="count", default=0,
                         help="the library's log messages (-v: INFO, -vv: DEBUG) on stderr")
     commands = parser.add_subparsers(title="commands", metavar="COMMAND")
-    common, parallel = [_common()], [_common(jobs=True), _placement()]
+    common, parallel = [_common()], [_common(jobs=True), _placement(), _forcing(), _timeout()]
+    writing = [_common(), _forcing()]
 
     run = commands.add_parser("run", parents=parallel, help="simulate a scenario file, write tables and PNG plots",
                               description="Simulate every case of a TOML scenario file; write per-case time "
                                           "series, summary.csv, PNG plots and metadata.json; print the summary.")
     run.add_argument("scenario", type=Path, help="scenario file (TOML)")
-    run.add_argument("--timeout", type=float, metavar="SECONDS",
-                     help="wall-clock budget of each simulation (overrides the file's solver.timeout)")
     run.add_argument("--format", choices=FORMATS, default="csv",
                      help="file format of the time series (default csv; netcdf needs the [io] extra, parquet "
                           "pyarrow)")
@@ -296,16 +351,16 @@ def _parser() -> argparse.ArgumentParser:
     actions = scenarios.add_subparsers(title="actions", metavar="ACTION")
     listing = actions.add_parser("list", parents=common, help="name and title of each packaged example")
     listing.set_defaults(command=_scenarios_list)
-    copying = actions.add_parser("copy", parents=common, help="copy a packaged example to edit and run it",
+    copying = actions.add_parser("copy", parents=writing, help="copy a packaged example to edit and run it",
                                  description="Copy the packaged example NAME (with or without .toml) to DEST: a "
                                              "directory (default: the working directory), where it becomes "
-                                             "DEST/NAME.toml, or a new file. Never overwrites.")
+                                             "DEST/NAME.toml, or a new file. Never overwrites unless --force.")
     copying.add_argument("name", help="the example's name (see `frictionsim scenarios list`)")
     copying.add_argument("dest", nargs="?", default=".", help="directory or new file (default .)")
     copying.set_defaults(command=_scenarios_copy)
     scenarios.set_defaults(command=_scenarios_list)
 
-    demo = commands.add_parser("demo", parents=common, help="papers 000 and 001: Fig. 7 cases, friction reduction, "
+    demo = commands.add_parser("demo", parents=writing, help="papers 000 and 001: Fig. 7 cases, friction reduction, "
                                                             "Table 5 refit, torsional stick-slip",
                                description="Built-in scenarios of paper 000: Fig. 7 dry and OBM cases with Coulomb "
                                            "and Dahl friction, friction reduction against Tables 4-5, an amplitude "
@@ -318,14 +373,14 @@ def _parser() -> argparse.ArgumentParser:
     demo.add_argument("--quick", action="store_true", help="a shorter amplitude sweep and a smaller stick-slip map")
     demo.set_defaults(command=_demo)
 
-    fit = commands.add_parser("fit-table5", parents=common, help="refit Table 5 from Table 4, print both, plot Fig. 11",
+    fit = commands.add_parser("fit-table5", parents=writing, help="refit Table 5 from Table 4, print both, plot Fig. 11",
                               description="Least-squares refit of paper 000's Table 5 (log10 mu_df against "
                                           "log10 v_a/v_d per lubricant) from Table 4, beside the printed values.")
     fit.add_argument("--out", type=Path, default=Path(DEFAULT_OUT), help=f"output directory (default: {DEFAULT_OUT})")
     fit.set_defaults(command=_fit_table5)
 
     identify = commands.add_parser(
-        "fit", parents=common, help="identify a friction law from a measured record",
+        "fit", parents=[_common(), _forcing("--overwrite")], help="identify a friction law from a measured record",
         description="Fit a friction law to a CSV record of time, relative velocity, friction force and normal force "
                     "(frictionsim.fit.identify: output-error least squares through the engine); print the fitted "
                     "parameters with standard errors and identifiability; write fit.csv (the table), "
@@ -353,7 +408,7 @@ def _parser() -> argparse.ArgumentParser:
     identify.add_argument("--out", type=Path, help="output directory (default out/fit_<data file stem>)")
     identify.set_defaults(command=_fit)
 
-    td = commands.add_parser("torque-drag", parents=common,
+    td = commands.add_parser("torque-drag", parents=writing,
                              help="soft-string torque and drag along a survey: per-node CSV, broomstick and well-path "
                                   "plots; hydraulic oscillators and their placement",
                              description="Johancsik soft-string torque and drag of a drill string along a survey "
@@ -417,16 +472,14 @@ def _parser() -> argparse.ArgumentParser:
 # ------------------------------------------------------------------------------------------------------- commands
 def _run(args) -> int:
     from .scenario import ScenarioRun, load
+    from .scenario.runner import with_timeout
 
     scenario = load(args.scenario)
     out = _output_directory(args, args.scenario, scenario.output.directory, scenario.name)
-    _check_target(out)
-    if args.timeout is not None and not (args.timeout > 0 and math.isfinite(args.timeout)):
-        raise CommandError(f"--timeout must be a positive number of seconds (got {args.timeout:g})", 2)
+    _check_target(out, args)
+    _check_timeout(args.timeout)
     _check_format(args.format)
-    cases = list(scenario.cases)
-    if args.timeout is not None:
-        cases = [dataclasses.replace(c, solver=dataclasses.replace(c.solver, timeout=args.timeout)) for c in cases]
+    cases = [with_timeout(case, args.timeout) for case in scenario.cases]
     runs = []
     log.info("%s: %d cases", args.scenario, len(cases))
     with _imap(args.jobs, len(cases)) as imap, _progress(args, len(cases), scenario.name) as bar:
@@ -448,24 +501,27 @@ def _run(args) -> int:
     print(result.analysis.summary_note)
 
     # ScenarioRun.write writes metadata.json itself (rigs, solver options and counters per case)
-    written = _write(out, lambda directory: result.write(directory, format=args.format, command=args.command_line))
+    written = _write(out, lambda directory: result.write(directory, format=args.format, command=args.command_line),
+                     args)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
-    return 0
+    # a stick-slip map's points that failed or ran out of their timeout are in its CSV: the command fails
+    failures, points = [], 0
+    for run in runs:
+        if getattr(run, "map", None) is not None:
+            points += len(run.map.sweep.values)
+            failures += [(i, run.case.name, why) for i, why in run.case.kind.analysis.map_failures(run)]
+    return _report_failures(args.scenario, failures, points, "stick-slip map point")
 
 
 def _check_budget(file: Path, index: int, case, run) -> None:
     """A case that ran past its timeout, or ended short of t_end, is a failure (exit 1) like one the engine
-    stopped: the engine reads its clock only every 20 ms, so a run shorter than that finishes whatever its
-    budget, and a timeout of 1e-6 s must not pass as a success."""
-    where = f"{file}: case[{index}] {case.name!r}"
-    timeout = case.solver.timeout
-    if timeout is not None and run.wall_time > timeout:
-        raise CommandError(f"{where}: wall-clock budget exceeded: the run took {run.wall_time:.3g} s of timeout = "
-                           f"{timeout:g} s; raise --timeout (or the file's solver.timeout)", 1)
-    result = getattr(run, "result", None)
-    if result is not None and not result.completed:
-        raise CommandError(f"{where}: the run stopped at t = {result.t_reached:.9g} s of t_end = "
-                           f"{case.solver.t_end:g} s: {result.message}", 1)
+    stopped (:func:`frictionsim.scenario.runner.budget_failure`)."""
+    from .scenario.runner import budget_failure
+
+    reason = budget_failure(case, run)
+    if reason is not None:
+        hint = "; raise --timeout (or the file's solver.timeout)" if reason.startswith("wall-clock") else ""
+        raise CommandError(f"{file}: case[{index}] {case.name!r}: {reason}{hint}", 1)
 
 
 def _si_axis(sweep, key: str) -> List[Any]:
@@ -510,15 +566,13 @@ def _sweep(args) -> int:
 
     sweep = sweep_file.load(args.file)
     out = _output_directory(args, args.file, sweep.output.directory, sweep.name, "sweep file")
-    _check_target(out)
+    _check_target(out, args)
+    _check_timeout(args.timeout)
     count = len(sweep.points)
     log.info("%s: %d points x %d cases", args.file, count, len(sweep.cases))
     with _imap(args.jobs, count) as imap, _progress(args, count, sweep.name, unit="pt") as bar:
-        try:
-            result = sweep_file.run(sweep, imap=imap, on_point=lambda index: bar.update())
-        except SimulationError as error:
-            raise CommandError(f"{args.file}: a simulation stopped at t = {error.time_reached:.9g} s: {error}", 1) \
-                from None
+        try:  # a case that fails at a point (its timeout ran out, ...) is recorded as such; the rest run
+            result = sweep_file.run(sweep, imap=imap, on_point=lambda index: bar.update(), timeout=args.timeout)
         except InvalidParameterError as error:
             raise CommandError(f"{args.file}: {error}", 2) from None
     frame = result.frame()
@@ -536,9 +590,25 @@ def _sweep(args) -> int:
                                          for k in sweep.given_with_units},
                              "cases": list(sweep.cases), "points": count, "jobs": args.jobs}})
 
-    written = _write(out, write)
+    written = _write(out, write, args)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
-    return 0
+    return _report_failures(args.file, result.failures, count * len(sweep.cases), "point")
+
+
+def _report_failures(file: Path, failures, total: int, what: str) -> int:
+    """Exit status 1 with one line per failed point on stderr when any failed (the outputs are written all the
+    same: the failed rows say why), else 0."""
+    for index, case, reason in failures:
+        print(f"error: {file}: {what} {index} case {case!r} failed: {reason}", file=sys.stderr)
+    if failures:
+        print(f"error: {file}: {len(failures)} of {total} {what}s failed (their rows hold the reason)",
+              file=sys.stderr)
+    return 1 if failures else 0
+
+
+def _check_timeout(timeout: Optional[float]) -> None:
+    if timeout is not None and not (timeout > 0 and math.isfinite(timeout)):
+        raise CommandError(f"--timeout must be a positive number of seconds (got {timeout:g})", 2)
 
 
 # ----------------------------------------------------------------------------------------------- scenarios
@@ -575,16 +645,16 @@ def _scenarios_copy(args) -> int:
     if not target.parent.is_dir():
         raise CommandError(f"scenarios copy: {target.parent} is not a directory", 2)
     data = examples[name].read_bytes()
-    if os.path.lexists(target):  # checked again, atomically, when the copy is linked in
-        raise CommandError(f"scenarios copy: {target} exists; not overwritten (remove it or give another DEST)", 1)
+    refused = f"scenarios copy: {target} exists; not overwritten: pass --force to replace it, or give another DEST"
+    if os.path.lexists(target) and not args.overwrite:  # checked again, atomically, when the copy is linked in
+        raise CommandError(refused, 1)
     try:
-        # written whole beside it, then linked in only if the name is still free: never replaces a file, never
-        # follows a symbolic link out of DEST (it counts as existing), never leaves a truncated copy
-        with atomic_path(target, replace=False) as temporary:
+        # written whole beside it, then linked in only if the name is still free (with --force renamed onto it:
+        # a symbolic link of that name is replaced, never followed out of DEST); never a truncated copy
+        with atomic_path(target, replace=args.overwrite) as temporary:
             temporary.write_bytes(data)
     except FileExistsError:
-        raise CommandError(f"scenarios copy: {target} exists; not overwritten (remove it or give another DEST)",
-                           1) from None
+        raise CommandError(refused, 1) from None
     except OSError as error:
         raise CommandError(f"scenarios copy: cannot write {target} ({error.strerror or error})", 1) from None
     kind = "sweep" if b"[grid]" in data else "run"
@@ -596,12 +666,12 @@ def _scenarios_copy(args) -> int:
 def _demo(args) -> int:
     from . import demo
 
-    _check_target(args.out)
+    _check_target(args.out, args)
     with _progress(args, len(demo.STAGES), "demo", unit="part") as bar:
         result = demo.compute(quick=args.quick, progress=lambda stage: (bar.set_postfix_str(stage), bar.update()))
     print(result.report())
     written = _write(args.out, lambda directory: result.write(directory) + _metadata(
-        args, directory, extra={"quick": args.quick, "elapsed_s": result.elapsed}))
+        args, directory, extra={"quick": args.quick, "elapsed_s": result.elapsed}), args)
     print(f"\nwrote {len(written)} files into {args.out}/: {', '.join(str(p) for p in written)}")
     return 0
 
@@ -609,7 +679,7 @@ def _demo(args) -> int:
 def _fit_table5(args) -> int:
     from . import demo
 
-    _check_target(args.out)
+    _check_target(args.out, args)
     refit = demo.table5_refit()
     print(demo.table5_report(refit))
 
@@ -618,7 +688,7 @@ def _fit_table5(args) -> int:
         write_csv(refit, path)
         return [path, demo.write_fig11(directory)] + _metadata(args, directory, extra={"data": "paper 000 Table 4"})
 
-    written = _write(args.out, write)
+    written = _write(args.out, write, args)
     print(f"wrote {args.out}: {', '.join(str(p) for p in written)}")
     return 0
 
@@ -630,7 +700,7 @@ def _fit(args) -> int:
     from .fit import LAW_PARAMETERS, identify
 
     out = args.out if args.out is not None else Path("out") / f"fit_{folder_name(args.data.stem, 'data')}"
-    _check_target(out)
+    _check_target(out, args)
     laws = sorted(LAW_PARAMETERS)
     if args.law.lower().replace("-", "_") not in {k.lower() for k in laws}:
         raise CommandError(f"--law must be one of {', '.join(laws)} (got {args.law!r})", 2)
@@ -671,7 +741,7 @@ def _fit(args) -> int:
                                         "success": result.success, "message": result.message,
                                         "rms_residual_N": result.rms_residual, "r_squared": result.r_squared})
 
-    written = _write(out, write)
+    written = _write(out, write, args)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0 if result.success else 1
 
@@ -819,7 +889,7 @@ def _torque_drag(args) -> int:
     from . import plots, wells
 
     out = args.out if args.out is not None else Path("out") / folder_name(args.survey.stem, "survey")
-    _check_target(out)
+    _check_target(out, args)
     for name in ("mu", "cased_mu", "casing_shoe", "mud_density", "wob", "bit_torque", "depth", "element_length",
                  "depth_step"):
         values = getattr(args, name)
@@ -912,7 +982,7 @@ def _torque_drag(args) -> int:
             "survey": str(args.survey), "string": args.string, "bit_depth_m": depth, "friction_factors": args.mu,
             "conditions": conditions, "oscillators": [dataclasses.asdict(t) for t in tools], "estimate": estimate})
 
-    written = _write(out, write)
+    written = _write(out, write, args)
     print(f"wrote {out}: {', '.join(str(p) for p in written)}")
     return 0
 
@@ -954,62 +1024,35 @@ def folder_name(stem: str, fallback: str) -> str:
 
 
 # ----------------------------------------------------------------------------------------------- atomic outputs
-def _check_target(out: Path) -> None:
+def _check_target(out: Path, args) -> None:
+    """Before anything runs: ``out`` is a directory or nothing yet, and, without --force, holds no earlier
+    command's outputs (every command writes metadata.json: there, it would be replaced; any other output that
+    exists is found when the outputs are moved in, and refused all the same)."""
     try:
         if out.exists() and not out.is_dir():
             raise CommandError(f"{out}: output path exists and is not a directory", 2)
+        if not getattr(args, "overwrite", False) and os.path.lexists(out / "metadata.json"):
+            raise CommandError(_exists([out / "metadata.json"], args.force_option), 1)
     except OSError as error:  # e.g. a component longer than the file system allows (ENAMETOOLONG)
         raise CommandError(f"{out}: unusable output path ({error.strerror or error})", 2) from None
 
 
-def _write(out: Path, writer) -> List[Path]:
-    """Run ``writer(stage_directory)`` and move its files into ``out``; returns the paths relative to ``out``."""
+def _write(out: Path, writer, args=None) -> List[Path]:
+    """Run ``writer(stage_directory)`` and move its files into ``out``; returns the paths relative to ``out``. An
+    output that exists in ``out`` is replaced only with ``--force`` (``args.overwrite``)."""
     try:
-        with staged_directory(out) as stage:
+        with staged_directory(out, overwrite=getattr(args, "overwrite", False)) as stage:
             return [Path(p).relative_to(stage) for p in writer(stage)]
+    except OutputExistsError as error:
+        raise CommandError(_exists(error.paths, getattr(args, "force_option", "--force")), 1) from None
     except OSError as error:
         raise CommandError(f"{out}: cannot write the outputs ({error})", 1) from None
 
 
-@contextmanager
-def staged_directory(target) -> Iterator[Path]:
-    """Yield a new temporary directory next to ``target``; when the block succeeds, move its contents into
-    ``target`` (renamed into place if ``target`` does not exist yet), else delete it. Nothing half-written
-    appears in ``target``."""
-    target = Path(target).absolute()
-    target.parent.mkdir(parents=True, exist_ok=True)
-    stage = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".partial", dir=target.parent))
-    try:
-        yield stage
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(stage, 0o777 & ~mask)  # mkdtemp makes it private; give it the usual permissions
-        _commit(stage, target)
-    finally:
-        shutil.rmtree(stage, ignore_errors=True)
-
-
-def _commit(stage: Path, target: Path) -> None:
-    if not target.exists():
-        try:
-            os.rename(stage, target)
-            return
-        except OSError:
-            pass  # created meanwhile: merge below
-    files = [source for source in sorted(stage.rglob("*")) if not source.is_dir()]
-    # Check every destination before replacing any, so that a blocked one leaves the target as it was.
-    for source in files:
-        destination = target / source.relative_to(stage)
-        if destination.is_dir() or any(p.exists() and not p.is_dir() for p in destination.parents
-                                       if target in p.parents or p == target):
-            raise OSError(f"cannot write {destination}: a directory or file is in the way")
-        # a symbolic link below the target would carry the write elsewhere: never followed
-        if destination.is_symlink() or any(p.is_symlink() for p in destination.parents if target in p.parents):
-            raise OSError(f"cannot write {destination}: a symbolic link is in the way (not followed)")
-    for source in files:
-        destination = target / source.relative_to(stage)
-        destination.parent.mkdir(parents=True, exist_ok=True)
-        os.replace(source, destination)
+def _exists(paths: Sequence[Path], option: str = "--force") -> str:
+    more = f" (and {len(paths) - 1} more of this command's outputs)" if len(paths) > 1 else ""
+    return (f"{paths[0]} exists{more}; not overwritten: pass {option} to replace, or --out to write into another "
+            f"directory")
 
 
 if __name__ == "__main__":  # pragma: no cover

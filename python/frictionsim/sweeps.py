@@ -32,12 +32,14 @@ import concurrent.futures as cf
 import itertools
 import math
 import pickle
+import signal
 import threading
 import time
 import traceback
 from collections.abc import Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, Iterable, List, Optional, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -154,11 +156,15 @@ class _Failure:
 
 
 def _run_chunk(function: Callable[..., Any], fixed: Dict[str, Any], points: List[Dict[str, Any]],
-               stop: Optional[threading.Event] = None) -> Optional[List[Any]]:
+               stop: Optional[threading.Event] = None, worker: bool = False) -> Optional[List[Any]]:
     """Run ``function(**fixed, **point)`` for each point; an exception becomes a _Failure (the others still run).
 
     ``stop`` (an in-process pool's): set, it skips the rest (None: the sweep is ending); an interrupt
-    (KeyboardInterrupt, SystemExit) sets it on its way out, so no other worker starts a point meanwhile."""
+    (KeyboardInterrupt, SystemExit) sets it on its way out, so no other worker starts a point meanwhile.
+    ``worker``: run in a process pool's worker, which from then on ignores SIGINT (a terminal's Ctrl-C reaches
+    the whole process group): the interrupt is the parent's, which terminates the workers (see :func:`sweep`)."""
+    if worker and threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
     out: List[Any] = []
     for point in points:
         if stop is not None and stop.is_set():
@@ -230,8 +236,12 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
         A point failed and ``errors="raise"``; or the function, ``fixed`` or the grid does not pickle for a
         ProcessPoolExecutor (``index`` -1).
     KeyboardInterrupt, SystemExit
-        Raised in a point (with either ``errors``): propagates unchanged, and on a thread pool no other point
-        starts after it.
+        Raised in a point or by Ctrl-C while waiting (with either ``errors``): propagates unchanged. The points
+        not started are cancelled; on a thread pool no other point starts after it; a ProcessPoolExecutor's
+        workers are terminated at once (its running points would otherwise hold the caller's ``with`` block for
+        as long as they take): the pool is broken afterwards (BrokenProcessPool on a further submit). Its
+        workers start with SIGINT blocked (forked, as on Linux) and ignore it from their first point on, so
+        that Ctrl-C of a terminal, which reaches the whole process group, is left to this process.
     """
     if not callable(function):
         raise TypeError(f"function must be callable, got {type(function).__name__}")
@@ -274,9 +284,16 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
             _require_picklable(pool, function, fixed, points)
             # threads share a stop flag: an interrupt in one point stops the others starting new ones at once
             stop = threading.Event() if isinstance(pool, cf.ThreadPoolExecutor) else None
-            futures = {pool.submit(_run_chunk, function, fixed, [points[i] for i in indices], stop): indices
-                       for indices in chunks}
+            processes = isinstance(pool, cf.ProcessPoolExecutor)
+            futures: Dict[cf.Future, List[int]] = {}
+            interrupted = False
             try:
+                # the workers a process pool forks while submitting keep SIGINT blocked: a terminal's Ctrl-C (sent
+                # to the whole group) is this process's, raised here when the mask is restored
+                with _sigint_blocked(processes):
+                    for indices in chunks:
+                        futures[pool.submit(_run_chunk, function, fixed, [points[i] for i in indices], stop,
+                                            processes)] = indices
                 for future in cf.as_completed(futures):
                     indices = futures[future]
                     try:
@@ -286,15 +303,62 @@ def sweep(function: Callable[..., Any], grid: Grid, *, fixed: Optional[Mapping[s
                             type(error), error, error.__traceback__)))] * len(indices)
                     if outcome is not None:  # None: skipped after an interrupt, whose future raises it here
                         store(indices, outcome)
+            except BaseException as error:
+                interrupted = not isinstance(error, Exception)  # Ctrl-C, SystemExit, SIGTERM raised by a handler
+                raise
             finally:  # on an error (or Ctrl-C) cancel what has not started; no-op when all are done
                 if stop is not None:
                     stop.set()
                 for future in futures:
                     future.cancel()
+                if interrupted and processes:
+                    _terminate_workers(pool)
     result = SweepResult(points=points, values=values, parameters=parameters, grid_shape=grid_shape,
                          elapsed=time.perf_counter() - started)
     result.metadata = _provenance(function, fixed, pool, result)
     return result
+
+
+@contextmanager
+def _sigint_blocked(block: bool = True) -> Iterator[None]:
+    """SIGINT blocked in this thread for the block, then the mask restored: processes forked meanwhile (a
+    ProcessPoolExecutor's workers start as it submits, forked on Linux) keep it blocked, so a terminal's Ctrl-C,
+    sent to the whole process group, never reaches them; this process gets a SIGINT that arrived meanwhile as
+    soon as the mask is restored (nothing is lost). Spawned processes start unblocked (multiprocessing's spawn
+    resets the mask): they ignore SIGINT from their first point on. A no-op without signal masks (Windows) or
+    outside the main thread."""
+    if not (block and hasattr(signal, "pthread_sigmask") and threading.current_thread() is threading.main_thread()):
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+#: How long the terminated workers of a process pool are waited for before they are killed [s].
+_TERMINATE_GRACE = 0.5
+
+
+def _terminate_workers(pool: cf.ProcessPoolExecutor) -> None:
+    """Stop a process pool's workers now, running points and all (SIGTERM, then SIGKILL after a grace period),
+    and shut the pool down without waiting: an interrupted sweep must not wait for points that take hours.
+    concurrent.futures has no public handle on its processes before Python 3.14's terminate_workers()."""
+    workers = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    if not workers and callable(getattr(pool, "terminate_workers", None)):
+        pool.terminate_workers()
+        return
+    for process in workers:
+        if process.is_alive():
+            process.terminate()
+    deadline = time.monotonic() + _TERMINATE_GRACE
+    for process in workers:
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join(_TERMINATE_GRACE)
 
 
 def _provenance(function: Callable[..., Any], fixed: Mapping[str, Any], pool: Optional[cf.Executor],

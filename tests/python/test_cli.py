@@ -259,7 +259,11 @@ def test_output_into_existing_directory_and_onto_a_file(tmp_path, capsys):
     out.mkdir()
     (out / "keep.txt").write_text("mine")
     (out / "summary.csv").write_text("old")
-    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out)]) == 0
+    # an output that exists is replaced only with --force (issue 23): refused, nothing moved in
+    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out)]) == 1
+    assert "summary.csv exists" in capsys.readouterr().err and (out / "summary.csv").read_text() == "old"
+    assert sorted(p.name for p in out.iterdir()) == ["keep.txt", "summary.csv"]
+    assert main(["run", str(EXAMPLES / "fig7_obm.toml"), "--out", str(out), "--force"]) == 0
     assert (out / "keep.txt").read_text() == "mine"
     assert (out / "summary.csv").read_text().startswith("case,law")
     assert _files(tmp_path)[0] == "out" and all(f.startswith("out") for f in _files(tmp_path))

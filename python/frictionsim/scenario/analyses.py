@@ -453,10 +453,28 @@ class StickSlipAnalysis(Analysis):
         grid = None
         a = case.analysis
         if a.surface_speeds is not None:
+            # each point's run keeps the case's wall-clock budget (solver.timeout, or --timeout): a point that runs
+            # out is marked timed out in the map and the others still run
+            budget = {} if case.solver.timeout is None else {"timeout": case.solver.timeout}
             with ThreadPoolExecutor(2) as executor:  # the engine releases the GIL: the points run in parallel
                 grid = ds.stick_slip_map(rig, a.surface_speeds, a.weights_on_bit, t_end=case.solver.t_end,
-                                         transient=transient, rtol=case.solver.rtol, executor=executor)
+                                         transient=transient, rtol=case.solver.rtol, executor=executor, **budget)
         return StringRun(case, rig, result, measures, grid, wall_time)
+
+    @staticmethod
+    def map_failures(run: "StringRun") -> List[Tuple[int, str]]:
+        """(point index in C order, reason) of the map's points that failed or ran out of their timeout."""
+        grid = run.map
+        if grid is None:
+            return []
+        timed_out = getattr(grid, "timed_out", None)
+        out = []
+        for i, value in enumerate(grid.sweep.values):
+            if isinstance(value, BaseException):
+                out.append((i, f"{type(value).__name__}: {value}"))
+            elif timed_out is not None and timed_out.flat[i]:
+                out.append((i, f"timed out: its run passed timeout = {run.case.solver.timeout:g} s"))
+        return out
 
     def summary_columns(self, summary) -> List[Tuple[str, str, str]]:
         return list(self.SUMMARY_COLUMNS)

@@ -4,6 +4,7 @@ kind's analysis (:mod:`frictionsim.scenario.analyses`)."""
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 from dataclasses import dataclass
@@ -16,8 +17,9 @@ from ..atomic import atomic_path, write_csv, write_text
 from ..errors import InvalidParameterError
 from ..simulation import simulate
 from .specs import Case, Scenario
+from .staging import OutputExistsError, staged_directory
 
-__all__ = ["FORMATS", "ScenarioRun", "run", "run_case"]
+__all__ = ["FORMATS", "OutputExistsError", "ScenarioRun", "budget_failure", "run", "run_case", "with_timeout"]
 
 #: Table formats of :meth:`ScenarioRun.write`: csv (always there), netcdf and parquet (the extra frictionsim[io]).
 FORMATS = ("csv", "netcdf", "parquet")
@@ -37,6 +39,27 @@ def run_case(case: Case):
     result = simulate(rig, s.t_end, method=s.method, rtol=s.rtol, atol=s.atol, output_times=case.output_times(),
                       timeout=s.timeout, step=s.step)
     return case.kind.analysis.measure(case, rig, result, time.perf_counter() - start)
+
+
+def with_timeout(case: Case, timeout: Optional[float]) -> Case:
+    """``case`` with its solver.timeout [s] replaced by ``timeout`` (None: as it is), e.g. ``--timeout``'s; the
+    budget holds for each of its runs (a stick-slip map's points too)."""
+    if timeout is None:
+        return case
+    return dataclasses.replace(case, solver=dataclasses.replace(case.solver, timeout=timeout))
+
+
+def budget_failure(case: Case, run: Any) -> Optional[str]:
+    """Why a completed run counts as failed (None: it does not): it ran past its solver.timeout, or ended short
+    of t_end. The engine reads its clock only every 20 ms, so a run shorter than that finishes whatever its budget,
+    and a timeout of 1e-6 s must not pass as a success."""
+    timeout = case.solver.timeout
+    if timeout is not None and run.wall_time > timeout:
+        return f"wall-clock budget exceeded: the run took {run.wall_time:.3g} s of timeout = {timeout:g} s"
+    result = getattr(run, "result", None)
+    if result is not None and not result.completed:
+        return f"the run stopped at t = {result.t_reached:.9g} s of t_end = {case.solver.t_end:g} s: {result.message}"
+    return None
 
 
 def run(scenario: Scenario) -> "ScenarioRun":
@@ -92,9 +115,14 @@ class ScenarioRun:
         return record
 
     def write(self, directory: Union[str, Path], format: str = "csv", *,
-              command: Union[str, Iterable[str], None] = None) -> List[Path]:
-        """Write the tables and PNG plots chosen in ``output`` into ``directory`` (which must exist), and always
-        ``metadata.json`` (:meth:`metadata`, with ``command`` when given).
+              command: Union[str, Iterable[str], None] = None, overwrite: bool = False) -> List[Path]:
+        """Write the tables and PNG plots chosen in ``output`` into ``directory`` (made if missing), and always
+        ``metadata.json`` (:meth:`metadata`, with ``command`` when given). All at once: written beside it first
+        and moved in when every file is done (:func:`frictionsim.scenario.staging.staged_directory`).
+
+        ``overwrite``: replace files of those names already in ``directory``. Default False: an earlier run's
+        outputs are not lost to a repeated call unless it says so; :class:`OutputExistsError` (a FileExistsError)
+        names the file and nothing is written (the command line's ``--force``).
 
         ``format``: the tables as "csv", "netcdf" (one file per case: the run's Dataset, events and units included,
         with its derived columns; the summary over ``case``; provenance in the attributes) or "parquet" (the
@@ -113,6 +141,11 @@ class ScenarioRun:
 
             parquet_engine()
         directory = Path(directory)
+        with staged_directory(directory, overwrite=overwrite) as stage:
+            written = self._write_into(stage, format, command)
+            return [directory / path.relative_to(stage) for path in written]
+
+    def _write_into(self, directory: Path, format: str, command: Union[str, Iterable[str], None]) -> List[Path]:
         output, written = self.scenario.output, []
         record = self.metadata(command=command)
         frames = [(run.case.name, run.case.friction.label, run.timeseries()) for run in self.runs]

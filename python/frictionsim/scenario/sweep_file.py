@@ -49,9 +49,11 @@ import numpy as np
 
 from ..atomic import write_csv, write_text
 from .. import units
+from ..errors import InvalidParameterError
 from .parser import SCHEMA_UNITS, ScenarioError, loads_toml, parse, read_toml
 from .rigs import RIG_KINDS, friction_types
 from .specs import Scenario
+from .staging import staged_directory
 
 __all__ = ["GRID_SECTIONS", "MAX_POINTS", "SweepFile", "SweepOutput", "SweepRun", "load", "loads", "run",
            "run_point"]
@@ -358,21 +360,51 @@ def _describe(point: Mapping[str, Any]) -> str:
 
 # ------------------------------------------------------------------------------------------------------ running
 def run_point(scenario: Scenario) -> List[Dict[str, Any]]:
-    """The summary row of each case of one point's scenario (top-level, so that a process pool can run it)."""
-    from .runner import run_case
+    """The summary row of each case of one point's scenario (top-level, so that a process pool can run it).
 
-    return [run_case(case).summary() for case in scenario.cases]
+    A case whose run fails (its solver.timeout ran out, the engine stopped it early, or it ran past the timeout:
+    :func:`frictionsim.scenario.runner.budget_failure`) gives the row ``{"case": name, "error": reason}``
+    instead, and the point's other cases, and the other points, still run."""
+    from ..errors import SimulationError
+    from .runner import budget_failure, run_case
+
+    rows = []
+    for case in scenario.cases:
+        try:
+            outcome = run_case(case)
+        except SimulationError as error:
+            rows.append({"case": case.name, "error": f"{type(error).__name__}: stopped at t = "
+                                                     f"{error.time_reached:.9g} s of t_end = "
+                                                     f"{case.solver.t_end:g} s: {error}"})
+            continue
+        reason = budget_failure(case, outcome)
+        rows.append(outcome.summary() if reason is None else {"case": case.name, "error": reason})
+    return rows
 
 
 def run(sweep: SweepFile, *, imap: Callable[[Callable, Iterable], Iterable] = map,
-        on_point: Optional[Callable[[int], None]] = None) -> "SweepRun":
+        on_point: Optional[Callable[[int], None]] = None, timeout: Optional[float] = None) -> "SweepRun":
     """Run every point of ``sweep`` (``imap(run_point, scenarios)``: the built-in map, or a pool's ordered
-    ``imap``); ``on_point(index)`` is called as each point's rows arrive. The output columns are checked against
-    the first point's summary, before the other points' results are read. Writes nothing."""
+    ``imap``); ``on_point(index)`` is called as each point's rows arrive. ``timeout`` [s]: the wall-clock budget
+    of each case's run at each point, replacing the file's solver.timeout (None: the file's); a case that runs out
+    is recorded as failed with its reason (:attr:`SweepRun.failures`) and the rest continue. The output columns
+    are checked against the first summary that arrives, before the other points' results are read. Writes
+    nothing."""
+    from .runner import with_timeout
+
+    if timeout is not None and not (isinstance(timeout, (int, float)) and not isinstance(timeout, bool)
+                                    and math.isfinite(timeout) and timeout > 0):
+        raise InvalidParameterError(f"timeout must be a positive number of seconds (got {timeout!r})", "timeout")
+    scenarios = [dataclasses.replace(scenario, cases=tuple(with_timeout(case, timeout) for case in scenario.cases))
+                 for scenario in sweep.scenarios]
     rows: List[List[Dict[str, Any]]] = []
-    for index, point_rows in enumerate(imap(run_point, sweep.scenarios)):
-        if index == 0:
-            _check_columns(sweep, point_rows[0])
+    checked = False
+    for index, point_rows in enumerate(imap(run_point, scenarios)):
+        if not checked:
+            summary = next((row for row in point_rows if "error" not in row), None)
+            if summary is not None:
+                _check_columns(sweep, summary)
+                checked = True
         rows.append(point_rows)
         if on_point is not None:
             on_point(index)
@@ -403,17 +435,24 @@ class SweepRun:
     rows: List[List[Dict[str, Any]]]
 
     @property
+    def failures(self) -> List[Tuple[int, str, str]]:
+        """(point index, case, reason) of every case that failed at a point (see :func:`run_point`)."""
+        return [(index, row["case"], row["error"]) for index, point_rows in enumerate(self.rows)
+                for row in point_rows if "error" in row]
+
+    @property
     def value(self) -> Optional[str]:
         """The plotted summary column: output.value, else the first of :data:`DEFAULT_VALUES` present."""
         if self.sweep.output.value is not None:
             return self.sweep.output.value
-        first = self.rows[0][0] if self.rows and self.rows[0] else {}
+        first = next((row for point_rows in self.rows for row in point_rows if "error" not in row), {})
         return next((v for v in DEFAULT_VALUES if v in first), None)
 
     def frame(self):
         """pandas DataFrame, one row per point and case: the grid keys (in SI), ``<key> (given)`` (the text of
         each key given with units), ``case``, then the summary columns (output.columns and the plotted value,
-        else all)."""
+        else all); with failed cases, a last column ``error`` holds the reason (empty elsewhere) and their
+        summary columns are NaN."""
         import pandas as pd
 
         columns = self.sweep.output.columns
@@ -425,15 +464,27 @@ class SweepRun:
         for point, si_point, point_rows in zip(self.sweep.points, si_points, self.rows):
             texts = {f"{key} (given)": str(point[key]) for key in given}
             for row in point_rows:
-                kept = {k: v for k, v in row.items() if k != "case"}
+                kept = {k: v for k, v in row.items() if k not in ("case", "error")}
                 if columns is not None:
-                    kept = {k: row[k] for k in columns}
+                    kept = {k: row.get(k, math.nan) for k in columns}
                 records.append({**si_point, **texts, "case": row["case"], **kept})
-        return pd.DataFrame(records)
+                if "error" in row:
+                    records[-1]["error"] = row["error"]
+        frame = pd.DataFrame(records)
+        if "error" in frame:  # last, and "" where the case ran
+            frame["error"] = frame.pop("error").fillna("")
+        return frame
 
-    def write(self, directory: Union[str, Path]) -> List[Path]:
-        """Write sweep.csv, sweep.png (when the first grid key is numeric) and sweep.toml into ``directory``."""
+    def write(self, directory: Union[str, Path], *, overwrite: bool = False) -> List[Path]:
+        """Write sweep.csv, sweep.png (when the first grid key is numeric) and sweep.toml into ``directory``, all
+        at once (as :meth:`frictionsim.scenario.ScenarioRun.write`); ``overwrite``: replace files of those names
+        there (default False: :class:`~frictionsim.scenario.staging.OutputExistsError` names the file, nothing
+        is written)."""
         directory = Path(directory)
+        with staged_directory(directory, overwrite=overwrite) as stage:
+            return [directory / path.relative_to(stage) for path in self._write_into(stage)]
+
+    def _write_into(self, directory: Path) -> List[Path]:
         frame = self.frame()
         written = [directory / "sweep.csv"]
         write_csv(frame, written[0])
