@@ -405,6 +405,9 @@ def _parser() -> argparse.ArgumentParser:
                           help="parameters held at these values instead of fitted")
     identify.add_argument("--method", choices=("least_squares", "differential_evolution"), default="least_squares",
                           help="local least squares (default) or a global differential-evolution search")
+    identify.add_argument("--decimate", type=_jobs, default=1, metavar="K",
+                          help="fit the means of blocks of K samples (frictionsim.fit.decimate): a long record "
+                               "within the fit's work limit (default 1: every sample)")
     identify.add_argument("--out", type=Path, help="output directory (default out/fit_<data file stem>)")
     identify.set_defaults(command=_fit)
 
@@ -711,12 +714,20 @@ def _fit(args) -> int:
         columns["normal"] = args.normal
     record = _read_record(args.data, columns)
     data_file = _file_record(args.data)  # what was read, before the fit's minutes in which it could change
+    if args.decimate > 1:
+        from .fit import decimate
+
+        roles = list(record)
+        record = dict(zip(roles, decimate(*(record[role] for role in roles), factor=args.decimate)))
     normal = record["normal"] if args.normal_force is None else args.normal_force
     try:
         result = identify(args.law, record["time"], record["velocity"], record["force"], normal, method=args.method,
                           initial_guess=args.guess or None, fixed=args.fixed or None)
     except InvalidParameterError as error:
-        raise CommandError(f"{args.data}: {error}", 2) from None
+        from .fit.solver import FitWorkError
+
+        hint = f"; here: --decimate {args.decimate * error.factor}" if isinstance(error, FitWorkError) else ""
+        raise CommandError(f"{args.data}: {error}{hint}", 2) from None
     print(f"{args.data}: {len(record['time'])} samples over {record['time'][-1] - record['time'][0]:g} s")
     print(result.summary())
     table = result.to_pandas()

@@ -398,3 +398,107 @@ def test_the_python_api_refuses_unless_overwrite(tmp_path):
     assert _snapshot(tmp_path) == before  # nothing replaced, no staging directory left
     assert not [p for p in tmp_path.parent.iterdir() if p.name.endswith(".partial")]
     assert run.write(tmp_path, overwrite=True) == written
+
+
+# ------------------------------------------------------------------------------------------------- fits on big records
+def _dahl_record(n):
+    t = np.linspace(0.0, 1.0, n)
+    v = 0.05 * np.sin(2 * np.pi * 4 * t)
+    force = 0.41 * 90.0 * np.tanh(v / 0.01)
+    return t, v, force
+
+
+def _no_simulation(monkeypatch):
+    def refuse(*args, **kwargs):
+        raise AssertionError("a simulation ran before the fit's work was checked")
+    monkeypatch.setattr("frictionsim.fit.forward_model.simulate", refuse)
+
+
+@pytest.mark.parametrize("call", ["identify_dahl", "identify_lugre", "identify", "compare_laws"])
+def test_a_fit_on_a_million_rows_is_refused_at_once_naming_the_limit(call, monkeypatch):
+    # before: identify_* / compare_laws on a 1e6-row record ran past 60 s (35+ simulations through every row)
+    from frictionsim.fit.solver import MAX_FIT_WORK, FitWorkError
+
+    _no_simulation(monkeypatch)
+    t, v, force = _dahl_record(1_000_000)
+    started = time.monotonic()
+    with pytest.raises(FitWorkError) as info:
+        if call == "compare_laws":
+            fit.compare_laws({"t": t, "relative_velocity": v, "friction_force": force, "normal_force": 90.0 + 0 * t})
+        elif call == "identify":
+            fit.identify("stribeck", t, v, force, 90.0)
+        else:
+            getattr(fit, call)(t, v, force, 90.0)
+    elapsed = time.monotonic() - started
+    print(f"\n{call} on 1e6 rows refused in {elapsed:.2f} s")
+    assert elapsed < 2.0
+    message = str(info.value)
+    assert info.value.parameter == ("data" if call == "compare_laws" else "t")
+    assert "1000000 samples x at least" in message and f"MAX_FIT_WORK = {MAX_FIT_WORK:.3g}" in message
+    assert f"frictionsim.fit.decimate(t, relative_velocity, friction_force, factor={info.value.factor})" in message
+    least = int(message.split("at least ")[1].split()[0])
+    assert info.value.factor == math.ceil(1_000_000 * least / MAX_FIT_WORK)  # the factor brings it within
+    assert 1_000_000 / info.value.factor * least <= MAX_FIT_WORK
+    assert isinstance(info.value, fs.InvalidParameterError)
+    import pickle
+
+    again = pickle.loads(pickle.dumps(info.value))
+    assert type(again) is FitWorkError and again.factor == info.value.factor and str(again) == message
+
+
+def test_the_least_simulations_are_what_a_fit_runs_at_the_least(monkeypatch):
+    # the estimate is a lower bound of the search's own count: a Dahl fit of 2001 samples runs at least that many
+    from frictionsim.fit import solver
+
+    seen = {}
+    check = solver.check_work
+
+    def spy(samples, spec, method, opts, scan_names=()):
+        seen["least"] = solver.minimum_simulations(spec, method, opts, scan_names)
+        return check(samples, spec, method, opts, scan_names)
+
+    monkeypatch.setattr(solver, "check_work", spy)
+    t, v, force = _dahl_record(2001)
+    result = fit.identify_dahl(t, v, force, 90.0, fit_exponent=False)
+    assert result.success and 0 < seen["least"] <= result.n_evaluations
+
+
+def test_decimate_is_block_means(monkeypatch):
+    t = np.arange(10.0)
+    signal = 3.0 * t + 1.0  # linear: a block's mean is the signal at the block's mean time
+    td, sd, n = fit.decimate(t, signal, 90.0, factor=4)
+    np.testing.assert_array_equal(td, [1.5, 5.5, 8.5])  # blocks 0-3, 4-7 and the short 8-9
+    np.testing.assert_allclose(sd, 3.0 * td + 1.0, rtol=0, atol=1e-12)
+    assert n == 90.0  # a constant passes through
+    for bad in (0, 1.5, True, "2"):
+        with pytest.raises(fs.InvalidParameterError) as info:
+            fit.decimate(t, signal, factor=bad)
+        assert info.value.parameter == "factor"
+    with pytest.raises(fs.InvalidParameterError) as info:
+        fit.decimate(t, signal[:5], factor=2)
+    assert info.value.parameter == "signals[0]"
+    # the remedy works: the decimated million-row record is within the limit (checked, not fitted here)
+    from frictionsim.fit.solver import FitWorkError
+
+    _no_simulation(monkeypatch)
+    t, v, force = _dahl_record(1_000_000)
+    with pytest.raises(FitWorkError) as info:
+        fit.identify_dahl(t, v, force, 90.0, fit_exponent=False)
+    short = fit.decimate(t, v, force, factor=info.value.factor)
+    with pytest.raises(AssertionError, match="a simulation ran"):  # past the check: the fit would start
+        fit.identify_dahl(*short, 90.0, fit_exponent=False)
+
+
+def test_frictionsim_fit_refuses_a_long_record_and_says_how_to_decimate(tmp_path, capsys):
+    import pandas as pd
+
+    t, v, force = _dahl_record(100_000)  # lugre: 100000 x 61 simulations at the least, past the limit
+    pd.DataFrame({"t": t, "relative_velocity": v, "friction_force": force, "normal_force": 90.0}).to_csv(
+        tmp_path / "long.csv", index=False)
+    started = time.monotonic()
+    assert main(["fit", "--law", "lugre", str(tmp_path / "long.csv"), "--out", str(tmp_path / "o")]) == 2
+    elapsed = time.monotonic() - started
+    err = capsys.readouterr().err.strip()
+    print(f"\nfrictionsim fit --law lugre on 1e5 rows refused in {elapsed:.2f} s")
+    assert err.startswith(f"error: {tmp_path / 'long.csv'}: t: 100000 samples x at least") and elapsed < 5.0
+    assert err.endswith("; here: --decimate 2") and not (tmp_path / "o").exists()

@@ -13,7 +13,8 @@ Identification by output-error least squares, one module a job:
   :mod:`.forward_model` (one simulation per residual), :mod:`.residuals`, :mod:`.solver` (scan, least_squares,
   differential_evolution), :mod:`.uncertainty` (covariance, identifiability), :mod:`.result`
   (IdentificationResult: AIC / BIC, eval, plot), :mod:`.profile` (profile-likelihood conf_interval),
-  :mod:`.progress` (verbose= / callback= of the searches, FitProgress);
+  :mod:`.progress` (verbose= / callback= of the searches, FitProgress), :mod:`.records` (decimate: a long record
+  shortened by block means, within the searches' work limit, solver.MAX_FIT_WORK);
 * :mod:`.compare`: compare_laws, several laws fitted to one record and ranked by AIC.
 
 Everything logs to ``logging.getLogger("frictionsim")``; nothing prints.
@@ -25,6 +26,7 @@ from .progress import FitProgress
 from .kinematic import identify, identify_dahl, identify_elasto_plastic, identify_lugre, identify_stribeck
 from .parameters import LAW_PARAMETERS
 from .result import IdentificationResult
+from .records import decimate
 from .rig import identify_axial_rig
 from .torsional import (BranchFit, FrictionTorqueEstimate, HystereticFit, estimate_friction_torque,
                         fit_hysteretic_friction)
@@ -32,4 +34,4 @@ from .torsional import (BranchFit, FrictionTorqueEstimate, HystereticFit, estima
 __all__ = ["PowerLawFit", "fit_power_law", "IdentificationResult", "LAW_PARAMETERS", "identify", "identify_dahl",
            "identify_lugre", "identify_elasto_plastic", "identify_stribeck", "identify_axial_rig",
            "FrictionTorqueEstimate", "estimate_friction_torque", "BranchFit", "HystereticFit",
-           "fit_hysteretic_friction", "compare_laws", "FitProgress"]
+           "fit_hysteretic_friction", "compare_laws", "FitProgress", "decimate"]

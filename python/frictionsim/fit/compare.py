@@ -15,10 +15,12 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from ..errors import InvalidParameterError
 from ..validation import reject
 from .kinematic import identify
 from .parameters import law_def
 from .result import IdentificationResult
+from .solver import FitWorkError
 
 __all__ = ["compare_laws"]
 
@@ -127,7 +129,17 @@ def compare_laws(data: Any, laws: Union[str, Sequence[Any]] = DEFAULT_LAWS, *, n
 
     results: Dict[str, IdentificationResult] = {}
     for key in keys:
-        results[key] = identify(key, t, v, force, n, **dict(options, **per_law.get(key, {})))
+        try:
+            results[key] = identify(key, t, v, force, n, **dict(options, **per_law.get(key, {})))
+        except InvalidParameterError as error:
+            if error.parameter != "t":
+                raise
+            # the record's time column is data's: a refusal of its samples (too many for the fit's work limit,
+            # not increasing) names data, the argument given
+            message = f"data: {error} (fitting {key})"
+            if isinstance(error, FitWorkError):
+                raise FitWorkError(message, "data", error.factor) from None
+            raise InvalidParameterError(message, "data") from None
     return _table(results, return_results)
 
 

@@ -258,7 +258,11 @@ _COMMON_DOC = """
     Raises
     ------
     InvalidParameterError (a ValueError)
-        Bad input; ``.parameter`` names it.
+        Bad input; ``.parameter`` names it. A record whose work, samples x the simulations the search needs at
+        the least, is beyond ``frictionsim.fit.solver.MAX_FIT_WORK`` is refused before anything runs
+        (``FitWorkError``, naming ``t``, with the ``factor`` that brings it within: :func:`frictionsim.fit.decimate`).
+    KeyboardInterrupt
+        Ctrl-C: every simulation polls it (a fraction of a second); ``verbose`` / ``callback`` report progress.
 """
 
 

@@ -22,6 +22,7 @@ from typing import Any, Callable, Dict, Optional, Sequence, Tuple
 import numpy as np
 from scipy import optimize
 
+from ..errors import InvalidParameterError
 from ..validation import reject
 from .parameters import law_def, LawDef
 from .progress import Reporter, StopSearch, verbose_logging
@@ -97,9 +98,68 @@ def fit_setup(law: Any, method: str, solver_options: Dict[str, Any]) -> Tuple[La
     return law_def(law), _check_method(method), _options(solver_options)
 
 
+# ------------------------------------------------------------------------------------------------ the work
+#: The most work a fit starts [sample-simulations]: the record's samples x the simulations its search needs at the
+#: least (:func:`minimum_simulations`), each of which runs through every sample. Measured on a loaded 2-core
+#: machine: 4e5-8e5 sample-simulations per second (a Dahl fit of 1e5 samples: 35 simulations, 14 at the least,
+#: 5 s; a LuGre fit of 1e5 samples: 380 simulations, 61 at the least, 46 s), so the limit is 6-12 s of the least
+#: work, and a converging search runs 2.5-6 times as many simulations as the least: a minute at most.
+MAX_FIT_WORK = 5_000_000
+#: What MAX_FIT_WORK costs: printed with a refusal.
+WORK_RATE_NOTE = ("about 10 s of the least work at 5e5 sample-simulations per second; a converging search runs "
+                  "2.5-6 times as many")
+#: Coordinate scan: a grid is left once this many points past its best cost 25 % more than it.
+SCAN_PATIENCE = 4
+
+
+def minimum_simulations(spec: SearchSpace, method: str, opts: SearchOptions, scan_names: Sequence[str]) -> int:
+    """The simulations a fit runs at the least, before it can stop: least squares, the coordinate scan (its
+    start and each scanned grid up to SCAN_PATIENCE points past its best, two rounds over several variables) and
+    one Jacobian (n + 1 runs); differential evolution, its first generation (popsize x n); both, the run at the
+    solution and the covariance's central Jacobian (2 n + 1). A converging search runs several times as many."""
+    n = len(spec.variables)
+    covariance = 2 * n + 1
+    if method == "differential_evolution":
+        return int(opts.popsize) * max(n, 1) + covariance
+    scan = 0
+    if opts.scan and scan_names:
+        rounds = 2 if len(scan_names) > 1 else 1
+        grids = [len(spec.variables[spec.names.index(name)].grid()) for name in scan_names]
+        scan = 1 + rounds * sum(min(size, SCAN_PATIENCE + 1) for size in grids)
+    return scan + n + 1 + covariance
+
+
+class FitWorkError(InvalidParameterError):
+    """A fit refused for its work (:func:`check_work`); ``factor`` is the decimation that brings it within."""
+
+    def __init__(self, message: str, parameter: str, factor: int = 0) -> None:
+        super().__init__(message, parameter)
+        self.factor = int(factor)
+
+    def __reduce__(self):
+        return (type(self), (str(self), self.parameter, self.factor))
+
+
+def check_work(samples: int, spec: SearchSpace, method: str, opts: SearchOptions,
+               scan_names: Sequence[str] = ()) -> None:
+    """Refuse a fit whose work (samples x :func:`minimum_simulations`) is beyond :data:`MAX_FIT_WORK`, before
+    anything runs, naming ``t`` (the record's samples), the limit and the factor that brings it within."""
+    least = minimum_simulations(spec, method, opts, scan_names)
+    work = samples * least
+    if work <= MAX_FIT_WORK:
+        return
+    factor = math.ceil(work / MAX_FIT_WORK)
+    raise FitWorkError(f"t: {samples} samples x at least {least} simulations of the whole record ({method}, {len(spec.variables)} "
+           f"fitted parameters) = {work:.3g} sample-simulations, beyond the fits' limit MAX_FIT_WORK = "
+           f"{MAX_FIT_WORK:.3g} ({WORK_RATE_NOTE}); shorten the record by a factor of {factor} or more first: "
+           f"frictionsim.fit.decimate(t, relative_velocity, friction_force, factor={factor}) averages blocks of "
+           f"{factor} samples (keep a block well below the dynamics' shortest time scale), or fit a part of the "
+           f"record", "t", factor)
+
+
 # ------------------------------------------------------------------------------------------------ searches
 def _coordinate_scan(evaluator: Evaluator, spec: SearchSpace, names: Sequence[str], rounds: int = 1,
-                     patience: int = 4) -> SearchSpace:
+                     patience: int = SCAN_PATIENCE) -> SearchSpace:
     """Coarse grid over each named variable's bounds in turn (others held), to start least_squares nearby.
 
     Each grid is walked upwards and left once ``patience`` points past the sweep's best cost 25 % more than it
@@ -219,8 +279,11 @@ def fit_model(model: Callable[[Dict[str, float]], np.ndarray], measured: np.ndar
 
     ``model(q)`` returns the simulated signal at the measured samples for fit variables ``q`` (raising
     SimulationError on a failed run); ``spec`` gives the searched variables, bounds, fixed values and the map to
-    reported parameters.
+    reported parameters. A fit whose work is beyond :data:`MAX_FIT_WORK` is refused before it starts
+    (:func:`check_work`); within it, each simulation stops at Ctrl-C (KeyboardInterrupt) and ``verbose=`` /
+    ``callback=`` report every iteration.
     """
+    check_work(measured.size, spec, method, opts, scan_names if opts.scan else ())
     with verbose_logging(int(opts.verbose)):
         return _fit_logged(model, measured, weights, spec, method=method, opts=opts, scan_names=scan_names,
                            x0_given=x0_given)
