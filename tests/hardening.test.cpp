@@ -1,9 +1,11 @@
 // Issue 11 on the C++ engine: a prescribed relative velocity resting at exactly zero (every law, every
 // integrator), the run's budgets (interrupt callback, wall-clock timeout, result rows), non-finite results,
 // tolerances outside the range where error estimates mean anything, and runs a few ulps long.
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -148,6 +150,90 @@ TEST_CASE("results are capped at max_output_rows, and non-finite rows are never 
         CHECK(std::string(e.what()).find("non-finite") != std::string::npos);
         CHECK(e.partial()->rows() == 1);  // the finite row at t = 1 is kept
     }
+}
+
+TEST_CASE("results are capped by bytes: a run stops whole-rowed at max_output_bytes, a run too big is refused at once",
+          "[hardening][memory]") {
+    constexpr std::size_t row = 3 * sizeof(double) + sizeof(int);  // Ramp's row: t, x, friction force, mode
+    SolverOptions o = with_method(Method::dormand_prince);
+    o.max_step = 1e-3;
+    o.max_output_bytes = 100 * row + row / 2;  // room for 100 whole rows, not 101
+    try {
+        (void)simulate(Ramp{}, 1.0, o);  // every step recorded: 1000 rows
+        FAIL("no BudgetExceeded");
+    } catch (const BudgetExceeded& e) {
+        CHECK(e.budget() == "max_output_bytes");
+        REQUIRE(e.partial());
+        const Result& partial = *e.partial();
+        CHECK(partial.rows() == 100);
+        CHECK(partial.states.size() == 100);  // every column the same length
+        CHECK(partial.friction_force.size() == 100);
+        CHECK(partial.mode.size() == 100);
+        CHECK(e.time_reached() == partial.t.back());
+        CHECK(std::string(e.what()).find("max_output_bytes = " + std::to_string(o.max_output_bytes)) !=
+              std::string::npos);
+    }
+
+    // rows known before the run (output_times): refused before a step is taken, naming the option and the size
+    SolverOptions known = with_method(Method::dormand_prince);
+    for (int k = 1; k <= 1000; ++k) known.output_times.push_back(1e-3 * k);
+    known.max_output_bytes = 999 * row;
+    CHECK(rejected_parameter([&] { (void)simulate(Ramp{}, 1.0, known); }) == "max_output_bytes");
+    CHECK(rejection_message([&] { (void)simulate(Ramp{}, 1.0, known); }).find("at least 1000 rows") !=
+          std::string::npos);
+    known.max_output_bytes = 1000 * row;  // exactly enough
+    CHECK(simulate(Ramp{}, 1.0, known).rows() == 1000);
+
+    // events count too: a RowRecorder fed directly, its bytes the rows' plus each event's
+    Event e;
+    e.name = "relative_velocity";
+    e.state_before = {1.0, 2.0};
+    e.state_after = {1.0, 0.0};
+    const std::size_t event = sizeof(Event) + 4 * sizeof(double) + e.name.size();
+    SolverOptions budget;
+    budget.max_output_bytes = 2 * row + event;
+    RowRecorder recorder(std::array<const char*, 1>{"x"}, 0, budget);
+    const double x = 0.0;
+    recorder.row(0.0, &x, 0.0, 0);
+    recorder.event(e, 0.5);
+    recorder.row(1.0, &x, 0.0, 0);
+    CHECK_THROWS_AS(recorder.row(2.0, &x, 0.0, 0), BudgetExceeded);
+    CHECK_THROWS_AS(recorder.event(e, 2.0), BudgetExceeded);
+    CHECK(recorder.result().rows() == 2);
+    CHECK(recorder.result().events.size() == 1);
+}
+
+TEST_CASE("the default byte budget is an eighth of the memory this process may use", "[hardening][memory]") {
+    const std::size_t budget = SolverOptions{}.output_byte_budget();
+#if defined(__linux__)
+    // an independent reading of the machine's memory: /proc/meminfo's MemTotal [kB]
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double kib = 0.0;
+    while (meminfo >> key) {
+        if (key == "MemTotal:") {
+            meminfo >> kib;
+            break;
+        }
+        meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    REQUIRE(kib > 0.0);
+    double usable = kib * 1024.0;
+    for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+        std::ifstream cgroup(path);
+        double limit = 0.0;
+        if (cgroup >> limit && limit > 0.0) {  // a container's limit, where there is one ("max" reads as none)
+            usable = std::min(usable, limit);
+            break;
+        }
+    }
+    CHECK(static_cast<double>(budget) == Approx(usable / 8.0).epsilon(0.02));
+#else
+    CHECK(budget > 0);
+#endif
+    SolverOptions given;
+    given.max_output_bytes = 12345;
+    CHECK(given.output_byte_budget() == 12345);
 }
 
 TEST_CASE("tolerances outside the range where error estimates bound anything are refused", "[hardening]") {

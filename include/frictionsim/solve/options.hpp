@@ -14,6 +14,7 @@
 #include "../error.hpp"
 #include "hybrid_system.hpp"
 #include "jacobian.hpp"
+#include "memory.hpp"
 #include "stop_conditions.hpp"
 
 namespace frictionsim {
@@ -135,6 +136,10 @@ struct SolverOptions {
     /// Rows (outputs and recorded steps) and events a Recorder keeps: past it the run stops with
     /// BudgetExceeded("max_output_rows"), so a failing run cannot fill the memory (2e6 rows are 50-200 MB).
     std::size_t max_output_rows = 2'000'000;
+    /// Bytes the recorded rows and events may take; 0: an eighth of the machine's physical memory
+    /// (output_byte_budget()). Past it the run stops with BudgetExceeded("max_output_bytes"), results kept; a run
+    /// whose rows are known before it starts (output_times, a fixed step) and would not fit is refused at once.
+    std::size_t max_output_bytes = 0;
     /// Polled between steps, at most every kPollInterval of wall-clock time: true stops the run (Interrupted).
     /// The Python bindings check for Ctrl-C here. Empty: never polled.
     std::function<bool()> interrupt;
@@ -241,6 +246,11 @@ struct SolverOptions {
             if (i > 0 && !(output_times[i] > output_times[i - 1]))
                 detail::reject(who, "output_times", "strictly increasing", output_times[i]);
         }
+    }
+
+    /// The byte budget in force: max_output_bytes, or the machine's default when it is 0.
+    std::size_t output_byte_budget() const {
+        return max_output_bytes > 0 ? max_output_bytes : detail::default_output_bytes();
     }
 
     double absolute_tolerance(std::size_t i) const { return atol_per_state.empty() ? atol : atol_per_state[i]; }

@@ -35,8 +35,7 @@ Result simulate_with(const System& system, double t_end, const SolverOptions& op
         every_step.record_steps = true;
         opts = &every_step;
     }
-    Recorder<System> recorder(system, std::min(options.output_times.size(), options.max_output_rows),
-                              options.max_output_rows);
+    Recorder<System> recorder(system, options.output_times.size(), options);
     try {
         auto outcome = integrate_hybrid<Integrator>(system, system.initial_state(), t_start, t_end, *opts, recorder);
         Result result = std::move(*recorder.finish(true, outcome.time, outcome.stats, outcome.stopped));

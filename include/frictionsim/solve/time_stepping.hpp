@@ -155,7 +155,7 @@ Result simulate_time_stepping(const Model& model, double t_end, const SolverOpti
         const std::size_t expected =
             outputs.empty() ? static_cast<std::size_t>(std::lround((t_end - t_start) / options.step)) + 1
                             : outputs.size();
-        RowRecorder recorder(names, std::min(expected, options.max_output_rows), options.max_output_rows);
+        RowRecorder recorder(names, expected, options);
         SolverStats stats;
         try {
             const double h = options.step, tol = 1e-9 * h;
