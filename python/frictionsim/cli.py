@@ -95,11 +95,15 @@ class CommandError(Exception):
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
     """Entry point of the ``frictionsim`` console script; returns the exit status."""
-    from .scenario import ScenarioError
+    try:  # Ctrl-C while the command line is read and the scenario package imported: 130 too, not death by SIGINT
+        from .scenario import ScenarioError
 
-    parser = _parser()
-    argv = list(sys.argv[1:] if argv is None else argv)
-    args = parser.parse_args(argv)
+        parser = _parser()
+        argv = list(sys.argv[1:] if argv is None else argv)
+        args = parser.parse_args(argv)
+    except KeyboardInterrupt:
+        print("error: interrupted", file=sys.stderr)
+        return 130
     if not getattr(args, "command", None):
         parser.print_help(sys.stderr)
         return 2
@@ -184,23 +188,35 @@ def _ignore_interrupts() -> None:
 
 
 @contextmanager
-def _sigint_ignored() -> Iterator[None]:
-    """SIGINT ignored for the block, then its handler restored: processes started meanwhile inherit the ignored
-    SIGINT, through exec too (a blocked mask would not survive multiprocessing's spawn), and Python keeps it
-    ignored, so spawned workers leave a terminal's Ctrl-C (sent to the whole process group) to this process even
-    while they import. The price: a SIGINT to this process within the block (the milliseconds of starting the
-    processes, 50 ms for two spawned ones on a 2-core machine) is lost. A no-op outside the main thread."""
-    import signal
-    import threading
+def _workers_ignoring_sigint(context) -> Iterator[None]:
+    """Processes ``context`` (spawn) starts within the block begin with SIGINT ignored: they are started through a
+    two-line /bin/sh wrapper, ``trap '' INT`` then exec of the interpreter (an ignored signal stays ignored
+    through exec, and Python keeps it ignored), so a terminal's Ctrl-C, sent to the whole process group, reaches
+    none of them while they import, before any initializer could run; this process keeps its own handler and
+    loses nothing. Without /bin/sh (Windows), or where the wrapper cannot run (a noexec temporary folder), they
+    start as before."""
+    import multiprocessing.spawn as spawn
+    import subprocess
 
-    if threading.current_thread() is not threading.main_thread():
+    shell = "/bin/sh"
+    if os.name != "posix" or not os.access(shell, os.X_OK):
         yield
         return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    folder = Path(tempfile.mkdtemp(prefix="frictionsim-worker."))
+    wrapper, previous = folder / "python", spawn.get_executable()
     try:
+        wrapper.write_text(f"#!{shell}\ntrap '' INT\nexec {shlex.quote(os.fsdecode(previous))} \"$@\"\n", encoding="utf-8")
+        wrapper.chmod(0o700)
+        try:
+            usable = subprocess.run([str(wrapper), "-S", "-c", "pass"], timeout=30, capture_output=True).returncode == 0
+        except (OSError, subprocess.SubprocessError):
+            usable = False
+        if usable:
+            context.set_executable(str(wrapper))
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        context.set_executable(previous)  # a worker started later (a replacement) starts as before
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 @contextmanager
@@ -215,11 +231,12 @@ def _imap(jobs: int, count: int) -> Iterator[Callable[[Callable, Iterable], Iter
     import multiprocessing
 
     pool = None
+    context = multiprocessing.get_context("spawn")
     try:
         # the workers start with SIGINT ignored: a Ctrl-C to the process group while they import, before their
         # initializer runs, kills none of them with a traceback; this process handles it
-        with _sigint_ignored():
-            pool = multiprocessing.get_context("spawn").Pool(workers, initializer=_ignore_interrupts)
+        with _workers_ignoring_sigint(context):
+            pool = context.Pool(workers, initializer=_ignore_interrupts)
         yield pool.imap
         pool.close()
     finally:

@@ -128,6 +128,34 @@ def test_a_process_pool_worker_ignores_sigint_only_once_it_runs_a_point():
         signal.signal(signal.SIGINT, previous)
 
 
+def _sigint_handler():
+    return int(signal.getsignal(signal.SIGINT)) if isinstance(signal.getsignal(signal.SIGINT), int) else -1
+
+
+def test_the_cli_starts_its_workers_with_sigint_ignored():
+    # before: spawned workers began with Python's KeyboardInterrupt handler and kept it while they imported the
+    # package (half a second or more), so a Ctrl-C to the process group then killed them with tracebacks
+    import multiprocessing
+
+    from frictionsim.cli import _workers_ignoring_sigint
+
+    context = multiprocessing.get_context("spawn")
+    with _workers_ignoring_sigint(context):
+        pool = context.Pool(1)
+    try:
+        assert pool.apply(_sigint_handler) == int(signal.SIG_IGN)
+    finally:
+        pool.terminate()
+        pool.join()
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # this process keeps its handler
+    plain = context.Pool(1)  # outside the block: as before
+    try:
+        assert plain.apply(_sigint_handler) == -1
+    finally:
+        plain.terminate()
+        plain.join()
+
+
 LONG_SWEEP = """
 title = "points of hours each"
 rig = { type = "kinematic", sliding_velocity = 1e-3, velocity_amplitude = 0.5, frequency = 17.0, normal_force = 90.0 }
