@@ -22,6 +22,7 @@
 #include "law_binding.hpp"
 #include "rig_binding.hpp"
 #include "simulation.hpp"
+#include "string_binding.hpp"
 
 namespace frictionsim::python {
 
@@ -63,19 +64,12 @@ double real_from(py::handle value, const char* keyword) {
 }
 
 /// A whole number in [low, high] (Python int or NumPy integer, not a bool), or an InvalidParameter naming it.
-std::size_t count_from(py::handle value, const char* keyword, long low, long high) {
-    if (py::isinstance<py::bool_>(value) || !py::hasattr(value, "__index__"))
-        throw py::type_error(std::string(rig_name) + ": " + keyword + " must be a whole number (got " +
-                             type_name(value) + ")");
-    const long v = value.attr("__index__")().cast<long>();
-    if (v < low || v > high)
-        throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " must be in [" + std::to_string(low) +
-                                            ", " + std::to_string(high) + "] (got " + std::to_string(v) + ")");
-    return static_cast<std::size_t>(v);
+std::size_t count_from(py::handle value, const char* keyword, long low, long high, const char* owner = rig_name) {
+    return static_cast<std::size_t>(whole_number_from(value, keyword, owner, low, high));
 }
 
 bool flag_from(py::handle value, const char* keyword) {
-    if (!py::isinstance<py::bool_>(value) && type_name(value) != "bool_")
+    if (!py::isinstance<py::bool_>(value) && !is_numpy_bool(value))
         throw py::type_error(std::string(rig_name) + ": " + keyword + " must be True or False (got " +
                              type_name(value) + ")");
     return py::bool_(py::reinterpret_borrow<py::object>(value));
@@ -155,6 +149,7 @@ PipeSection checked_section(const PipeSection& s, const char* owner) {
     validate_fields(owner, s, section_fields);
     if (!(s.inner_diameter < s.outer_diameter))
         detail::reject(owner, "inner_diameter", "< outer_diameter (a tube has a wall)", s.inner_diameter);
+    check_section_scale(owner, s);
     return s;
 }
 
@@ -339,11 +334,30 @@ py::dict rig_extras_of(const BoundStringRig& r) {
 
 /// A node number in 0..N, or an InvalidParameter naming `keyword`.
 std::size_t node_of(const BoundStringRig& r, long node, const char* keyword) {
-    const auto n = static_cast<long>(r.setup.elements);
-    if (node < 0 || node > n)
-        throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " must be in 0.." + std::to_string(n) +
-                                            " (got " + std::to_string(node) + ")");
-    return static_cast<std::size_t>(node);
+    return count_from(py::int_(node), keyword, 0, static_cast<long>(r.setup.elements));
+}
+
+/// simulate_variant's run with the string's stop flag polled beside Ctrl-C, the work estimated first
+/// (check_string_rig_work).
+std::shared_ptr<Result> run_string_rig(const BoundStringRig& r, double t_end, const SolverOptions& options,
+                                       double t_start) {
+    SolverOptions polled = options;
+    polled.interrupt = string_run_interrupt();
+    r.visit([&](const auto& system) {
+        SolverOptions resolved = polled;
+        if (has_sundials) resolve_callable_law_method(system, resolved);
+        check_string_rig_work(rig_name, system, t_end, t_start, resolved);
+    });
+    try {
+        py::gil_scoped_release release;
+        return r.visit([&](const auto& system) {
+            SolverOptions o = polled;
+            if (has_sundials) resolve_callable_law_method(system, o);
+            return std::make_shared<Result>(simulate_built_in(system, t_end, o, t_start));
+        });
+    } catch (const Interrupted&) {
+        raise_pending_python_error();
+    }
 }
 
 using StatesArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -438,6 +452,12 @@ Keywords
 
 }  // namespace
 
+/// This thread's stop flag (string_binding.hpp): a strong reference, or null.
+PyObject*& string_run_stop() {
+    thread_local PyObject* flag = nullptr;
+    return flag;
+}
+
 TopDrive top_drive_from(py::handle value, const char* owner) {
     const std::string s = py::isinstance<py::str>(value) ? value.cast<std::string>() : std::string();
     for (TopDrive d : {TopDrive::pi_motor, TopDrive::prescribed_speed})
@@ -500,13 +520,10 @@ across a section boundary takes each section's share (compliances in series).
     string
         .def_property_readonly("sections", [](const DrillString& s) { return s.sections(); },
                                "The sections, top to bottom (copies).")
-        .def_property_readonly("length", &DrillString::length, "Total length L [m].")
-        .def("lump", [](const DrillString& s, long elements) {
-                 if (elements < 1 || elements > max_elements)
-                     throw InvalidParameter("elements", "DrillString: elements must be in [1, " +
-                                                            std::to_string(max_elements) + "] (got " +
-                                                            std::to_string(elements) + ")");
-                 const LumpedString l = s.lump(static_cast<std::size_t>(elements));
+        .def_property_readonly("length", &DrillString::length, "Total length L [m].");
+    options.disable_function_signatures();
+    string.def("lump", [](const DrillString& s, py::handle elements) {
+                 const LumpedString l = s.lump(count_from(elements, "elements", 1, max_elements, "DrillString"));
                  py::dict d;
                  d["element_length"] = l.element_length;
                  d["node_inertia"] = to_array(l.node_inertia);
@@ -515,10 +532,15 @@ across a section boundary takes each section's share (compliances in series).
                  d["axial_stiffness"] = to_array(l.axial_stiffness);
                  return d;
              },
+             // the signature pybind11 writes for a long: elements is read as a handle so that 2**63 is refused
+             // by its value (InvalidParameter), not by pybind11's overload resolution
+             "lump(self, elements: typing.SupportsInt | typing.SupportsIndex) -> dict\n\n"
              "The lumped string of N = elements: "
              "element_length dx [m], node_inertia J_i [kg m^2] and node_mass m_i [kg] (N + 1 nodes), "
-             "torsional_stiffness [N m/rad] and axial_stiffness [N/m] (N springs).",
-             py::arg("elements"))
+             "torsional_stiffness [N m/rad] and axial_stiffness [N/m] (N springs).\n",
+             py::arg("elements"));
+    options.enable_function_signatures();
+    string
         .def("__len__", [](const DrillString& s) { return s.sections().size(); })
         .def("__repr__", [](const DrillString& s) {
             std::string out = "DrillString([";
@@ -745,10 +767,7 @@ Keywords
              "The torque on bit "
              "[N m] at each row (0 off bottom; the holding torque while the bit sticks).",
              py::arg("t"), py::arg("states"))
-        .def("_simulate", [](const BoundStringRig& r, double t_end, const SolverOptions& o, double t_start) {
-                 return simulate_variant(r.rig, t_end, o, t_start);
-             },
-             py::arg("t_end"), py::arg("options"), py::arg("t_start"))
+        .def("_simulate", &run_string_rig, py::arg("t_end"), py::arg("options"), py::arg("t_start"))
         .def("__reduce__", [](py::handle self) {
             const auto& r = self.cast<const BoundStringRig&>();
             py::dict kwargs = field_keywords(r.params, rig_fields);
@@ -795,6 +814,17 @@ run): exact up to 30 contacts (at 10 the mixed costs 3.1x and the captured 8.7x 
 the bit on bottom (at 100 the exact costs 1.25x and the captured 1.7x the mixed), captured beyond (at 1000 the
 mixed costs 1.07x and the exact 1.43x the captured). Off bottom the mixed treatment is the captured one.
 )doc");
+    // this thread's stop flag of the string runs (drillstring.stick_slip_map's workers: string_binding.hpp)
+    m.def("_string_run_stop", [](py::object flag) -> py::object {
+        PyObject*& slot = string_run_stop();
+        const py::object previous = slot ? py::reinterpret_steal<py::object>(slot) : py::object(py::none());
+        slot = flag.is_none() ? nullptr : flag.release().ptr();
+        return previous;
+    }, py::arg("flag"), "Sets the object whose is_set() this thread's string runs poll beside Ctrl-C (None: none); "
+                        "returns the previous one.");
+    for (const py::handle c : {py::handle(section), py::handle(string), py::handle(bit), py::handle(drag),
+                               py::handle(cls)})
+        guard_members(c);
     return std::move(cls);
 }
 

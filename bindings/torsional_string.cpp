@@ -22,6 +22,7 @@
 #include <frictionsim/string/torsional_string.hpp>
 
 #include "simulation.hpp"
+#include "string_binding.hpp"
 #endif
 
 namespace frictionsim::python {
@@ -104,6 +105,7 @@ struct GivenSurvey {
 };
 
 GivenSurvey survey_from(py::handle value) {
+    require_built(value);  // a bare Survey would be cast to an uninitialised one
     if (py::isinstance<Survey>(value)) {
         GivenSurvey g;
         g.survey = value.cast<Survey>();
@@ -209,16 +211,8 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
         used += kwargs.contains(key) ? 1 : 0;
         return present;
     };
-    if (given("elements")) {
-        const py::handle v = kwargs["elements"];
-        if (py::isinstance<py::bool_>(v) || !py::hasattr(v, "__index__"))
-            throw py::type_error(std::string(name) + ": elements must be a whole number (got " + type_name(v) + ")");
-        elements = v.attr("__index__")().cast<long>();
-    }
-    if (elements < 1 || elements > max_elements)
-        throw InvalidParameter("elements", std::string(name) + ": elements must be in [1, " +
-                                               std::to_string(max_elements) + "] (got " + std::to_string(elements) +
-                                               ")");
+    if (given("elements"))
+        elements = static_cast<long>(whole_number_from(kwargs["elements"], "elements", name, 1, max_elements));
     if (given("survey")) survey = survey_from(kwargs["survey"]);
     if (given("contact_radius")) radius = reals_from(kwargs["contact_radius"], "contact_radius");
     if (given("bit")) {
@@ -249,13 +243,23 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
 
 /// simulate_variant's run for the string model: the GIL released, Ctrl-C polled between steps; the exact treatment
 /// on the integrators this extension has (simulate_built_in).
+/// The work is estimated first (string_binding.hpp): the time-stepping treatments' fixed steps over the nodes, the
+/// exact treatment's StringRig by its explicit methods' stability bound. This thread's stop flag is polled beside
+/// Ctrl-C.
 std::shared_ptr<Result> run_string(const BoundTorsionalString& r, double t_end, const SolverOptions& options, double t_start) {
     SolverOptions polled = options;
-    polled.interrupt = &python_signal_raised;
+    polled.interrupt = string_run_interrupt();
+    const double span = t_end - t_start;
+    const bool time_stepping = is_time_stepping_method(options.method) ||
+                               (options.method == Method::automatic && r.treatment != StringTreatment::exact);
+    if (time_stepping && span > 0.0 && std::isfinite(span) && options.step > 0.0)
+        check_run_work(name, span / options.step, 2.0 * static_cast<double>(r.model.nodes()), span,
+                       "the fixed steps (t_end - t_start) / step over the nodes' angles and speeds");
     try {
         py::gil_scoped_release release;
         return std::make_shared<Result>(r.treated->run(
             t_end, polled, t_start, [](const auto& rig, double end, const SolverOptions& o, double start) {
+                check_string_rig_work(name, rig, end, start, o);  // the exact treatment's StringRig
                 return simulate_built_in(rig, end, o, start);
             }));
     } catch (const Interrupted&) {
@@ -417,6 +421,7 @@ py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams
             }
             return out + changed_fields_repr(r.params, fields) + ")";
         });
+    guard_members(cls);
 
     m.def("aarsnes_shor_well_b", [](const std::string& collar, const std::string& wave_speed, double measured_depth,
                                     const py::kwargs& kwargs) {

@@ -391,7 +391,8 @@ def test_a_table_with_any_parameters_builds_or_is_refused_naming_the_parameter(c
         built = _build(cls, kwargs)
     except fs.InvalidParameterError as error:
         assert error.parameter in TABLES[cls], error  # named as the caller named it
-        assert not expect_valid, f"valid parameters refused: {kwargs}: {error}"
+        # within every rule, refused only by the one beyond the table: a product of them past the doubles (issue 23)
+        assert not expect_valid or "finite double" in str(error), f"valid parameters refused: {kwargs}: {error}"
         return
     assert expect_valid, f"invalid parameters accepted: {kwargs} -> {built!r}"
     assert all(getattr(built, k) == v or (math.isnan(v) and math.isnan(getattr(built, k))) for k, v in kwargs.items())

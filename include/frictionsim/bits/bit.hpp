@@ -79,7 +79,10 @@ public:
     DetournayBitOnRock(DetournayBit law, double weight_on_bit)
         : law_(std::move(law)),
           weight_(detail::require_non_negative("DetournayBitOnRock", "weight_on_bit", weight_on_bit)),
-          depth_(law_.depth_at_weight(weight_)), torque_(law_.torque_on_bit(depth_)) {}
+          depth_(law_.depth_at_weight(weight_)), torque_(law_.cutting_torque_per_depth() * depth_ + law_.contact_torque()) {
+        // the torque at that depth: blamed on W or the bit's farthest value, not on the depth the rig computed
+        if (!std::isfinite(torque_)) law_.blame_at_weight(weight_, "the torque on bit c eps a^2 d + T_f [N m]", torque_);
+    }
 
     const DetournayBit& law() const { return law_; }
     double weight_on_bit() const { return weight_; }  ///< W, N

@@ -27,11 +27,13 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <sstream>
 
 #include "../detail/constants.hpp"
 #include "../detail/validate.hpp"
 #include "../friction/law.hpp"
 #include "../parameters.hpp"
+#include "../string/scale.hpp"
 
 namespace frictionsim {
 
@@ -73,7 +75,21 @@ public:
          &Params::torque_constant, "Constant of the torque: T = c (eps a^2 d + gamma mu a W_f)."},
     }};
 
-    explicit DetournayBit(const Params& p) : p_(p) { validate_fields(name, p, fields); }
+    explicit DetournayBit(const Params& p) : p_(p) {
+        validate_fields(name, p, fields);
+        // the law's constants, products of the table's values, stay doubles (5e-324 for zeta made W / (zeta eps a)
+        // infinite, blamed on the depth of cut): each refused naming the value farthest from its default
+        detail::require_representable(name, p_, fields, {"cutting_force_ratio", "intrinsic_specific_energy", "bit_radius"},
+                                      cutting_weight_per_depth(), "the cutting weight per depth zeta eps a [N/m]");
+        detail::require_representable(name, p_, fields, {"torque_constant", "intrinsic_specific_energy", "bit_radius"},
+                                      cutting_torque_per_depth(), "the cutting torque per depth c eps a^2 [N]");
+        detail::require_representable(name, p_, fields, {"bit_radius", "wearflat_length", "contact_strength"},
+                                      contact_force(), "the wear flats' force a l sigma [N]", false);
+        detail::require_representable(name, p_, fields,
+                                      {"torque_constant", "contact_orientation", "friction_coefficient", "bit_radius",
+                                       "wearflat_length", "contact_strength"},
+                                      contact_torque(), "the wear flats' torque c gamma mu a W_f [N m]", false);
+    }
     DetournayBit() : DetournayBit(Params{}) {}
     const Params& params() const { return p_; }
 
@@ -82,7 +98,19 @@ public:
     static double depth_of_cut(double rate_of_penetration, double angular_speed) {
         detail::require_non_negative(name, "rate_of_penetration", rate_of_penetration);
         detail::require_positive(name, "angular_speed", angular_speed);
-        return 2.0 * pi * rate_of_penetration / angular_speed;
+        const double d = 2.0 * pi * rate_of_penetration / angular_speed;
+        if (!std::isfinite(d))  // the ratio of two doubles past the largest: the smaller one is the odd one
+            detail::reject(name, angular_speed < 1.0 ? "angular_speed" : "rate_of_penetration",
+                           "such that 2 pi V / Omega is a finite depth of cut", angular_speed < 1.0 ? angular_speed
+                                                                                                  : rate_of_penetration);
+        return d;
+    }
+    /// zeta eps a [N/m] and c eps a^2 [N]: the cutting weight and torque per metre of depth of cut.
+    double cutting_weight_per_depth() const {
+        return p_.cutting_force_ratio * p_.intrinsic_specific_energy * p_.bit_radius;
+    }
+    double cutting_torque_per_depth() const {
+        return p_.torque_constant * p_.intrinsic_specific_energy * p_.bit_radius * p_.bit_radius;
     }
 
     /// W_f = a l sigma, N: the contact force on the wear flats (fully developed contact).
@@ -93,22 +121,35 @@ public:
     }
     /// W_c = zeta eps a d, N.
     double cutting_weight(double depth) const {
-        return p_.cutting_force_ratio * p_.intrinsic_specific_energy * p_.bit_radius * checked_depth(depth);
+        return finite_at_depth(cutting_weight_per_depth() * checked_depth(depth), depth);
     }
     /// T_c = c eps a^2 d, N m.
     double cutting_torque(double depth) const {
-        return p_.torque_constant * p_.intrinsic_specific_energy * p_.bit_radius * p_.bit_radius * checked_depth(depth);
+        return finite_at_depth(cutting_torque_per_depth() * checked_depth(depth), depth);
     }
     /// Steady weight on bit W = zeta eps a d + a l sigma, N, at depth of cut d (m per revolution).
-    double weight_on_bit(double depth) const { return cutting_weight(depth) + contact_force(); }
+    double weight_on_bit(double depth) const { return finite_at_depth(cutting_weight(depth) + contact_force(), depth); }
     /// Steady torque on bit T = c eps a^2 d + c gamma mu a (a l sigma), N m, while the bit turns forwards.
-    double torque_on_bit(double depth) const { return cutting_torque(depth) + contact_torque(); }
+    double torque_on_bit(double depth) const { return finite_at_depth(cutting_torque(depth) + contact_torque(), depth); }
     /// Depth of cut at which the steady bit carries weight W: d = (W - a l sigma) / (zeta eps a), m; 0 below the
     /// contact force (the wear flats carry all the weight, nothing is cut).
     double depth_at_weight(double weight) const {
-        detail::require_non_negative(name, "weight", weight);
-        return std::max(0.0, weight - contact_force()) /
-               (p_.cutting_force_ratio * p_.intrinsic_specific_energy * p_.bit_radius);
+        detail::require_non_negative(name, "weight_on_bit", weight);
+        const double d = std::max(0.0, weight - contact_force()) / cutting_weight_per_depth();
+        if (!std::isfinite(d)) blame_at_weight(weight, "the depth of cut (W - a l sigma) / (zeta eps a) [m]", d);
+        return d;
+    }
+    /// Rejects a quantity at weight on bit W that left the doubles: naming W, or the bit's value farthest from its
+    /// default when that one is farther (in decades) than W from a typical weight on bit, 1e5 N.
+    [[noreturn]] void blame_at_weight(double weight, const char* what, double value) const {
+        std::ostringstream rule;
+        rule.precision(6);
+        rule << "such that " << what << " is a finite double (it is " << value << ")";
+        const Field<Params>* f = detail::farthest_from_default(
+            p_, fields, {"cutting_force_ratio", "intrinsic_specific_energy", "bit_radius", "torque_constant"},
+            detail::decades_off(weight, 1e5));
+        if (f == nullptr) detail::reject(name, "weight_on_bit", rule.str().c_str(), weight);
+        detail::reject(name, f->name, rule.str().c_str(), p_.*(f->member));
     }
 
     /// Torque on bit, N m, at angular speed w (rad/s) and depth of cut d. Set-valued at w = 0: the stuck bit
@@ -125,6 +166,11 @@ public:
 
 private:
     static double checked_depth(double depth) { return detail::require_non_negative(name, "depth_of_cut", depth); }
+    static double finite_at_depth(double value, double depth) {
+        if (!std::isfinite(value))
+            detail::reject(name, "depth_of_cut", "such that the weight and torque on bit at it are finite", depth);
+        return value;
+    }
     Params p_;
 };
 

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "../detail/constants.hpp"
 #include "../parameters.hpp"
+#include "scale.hpp"
 
 namespace frictionsim {
 
@@ -53,6 +55,39 @@ inline constexpr std::array<Field<PipeSection>, 6> PipeSection::fields() {
     }};
 }
 
+/// What a section's table leaves out (each value within its rule, their products can leave the range of a double: an
+/// OD of 1e300 m, a length of DBL_MAX): the section's area, polar moment, rigidities, mass and inertia per length and
+/// its weight and inertia over its length are positive finite doubles, else refused naming the parameter that put them
+/// out (the one farthest from its default; the wall itself, inner_diameter, when OD^2 - ID^2 rounds to nothing).
+/// Without it the run's first infinite quantity, a node's normal force, took the blame.
+inline void check_section_scale(const char* who, const PipeSection& s) {
+    const auto& f = PipeSection::fields();
+    const double od2 = s.outer_diameter * s.outer_diameter;
+    if (!(std::isfinite(od2 * od2) && od2 * od2 >= DBL_MIN))
+        detail::reject(who, "outer_diameter", "such that OD^4 is a positive finite double (within about 1e-77 .. "
+                       "1e77 m)", s.outer_diameter);
+    if (!(s.area() >= DBL_MIN && s.polar_moment() >= DBL_MIN))
+        detail::reject(who, "inner_diameter", "such that the wall keeps an area: OD^2 - ID^2 a positive double "
+                       "(ID rounds to OD)", s.inner_diameter);
+    detail::require_representable(who, s, f, {"youngs_modulus", "outer_diameter"}, s.axial_rigidity(),
+                                  "the axial rigidity E A [N]");
+    detail::require_representable(who, s, f, {"shear_modulus", "outer_diameter"}, s.torsional_rigidity(),
+                                  "the torsional rigidity G I_p [N m^2]");
+    detail::require_representable(who, s, f, {"density", "outer_diameter"}, s.mass_per_length(),
+                                  "the mass per length rho A [kg/m]");
+    detail::require_representable(who, s, f, {"density", "outer_diameter"}, s.inertia_per_length(),
+                                  "the inertia per length rho I_p [kg m]");
+    // the weight and the inertia over the length (with g ~ 10 and a margin of 1e3 for the sums over sections)
+    detail::require_representable(who, s, f, {"length", "density", "outer_diameter"},
+                                  s.mass_per_length() * s.length * 1e4, "1e4 times its mass rho A L [kg]");
+    detail::require_representable(who, s, f, {"length", "density", "outer_diameter"},
+                                  s.inertia_per_length() * s.length * 1e3, "1e3 times its inertia rho I_p L [kg m^2]");
+    detail::require_representable(who, s, f, {"length", "youngs_modulus", "outer_diameter"},
+                                  s.length / s.axial_rigidity(), "its axial compliance L / (E A) [m/N]");
+    detail::require_representable(who, s, f, {"length", "shear_modulus", "outer_diameter"},
+                                  s.length / s.torsional_rigidity(), "its torsional compliance L / (G I_p) [1/(N m)]");
+}
+
 /// The lumped string: node 0 at the top, node N at the bit; spring i joins nodes i and i + 1.
 struct LumpedString {
     double element_length = 0.0;                      ///< dx, m
@@ -74,7 +109,10 @@ public:
             if (!(sections_[i].inner_diameter < sections_[i].outer_diameter))
                 detail::reject(who.c_str(), "inner_diameter", "< outer_diameter (a tube has a wall)",
                                sections_[i].inner_diameter);
+            check_section_scale(who.c_str(), sections_[i]);
         }
+        if (!std::isfinite(length()))
+            detail::reject("DrillString", "length", "such that the sections' total length is finite", length());
     }
 
     const std::vector<PipeSection>& sections() const { return sections_; }
@@ -114,6 +152,16 @@ public:
             out.node_mass[e] += 0.5 * mass;
             out.node_mass[e + 1] += 0.5 * mass;
         }
+        // every section is representable (check_section_scale); what is left is dx itself, L / N
+        const auto positive = [](double v) { return std::isfinite(v) && v >= DBL_MIN; };
+        for (std::size_t e = 0; e < elements; ++e)
+            if (!positive(out.torsional_stiffness[e]) || !positive(out.axial_stiffness[e]))
+                detail::reject("DrillString", "elements", "few enough that each element's length L / N keeps its "
+                               "springs G I_p / dx and E A / dx finite", static_cast<double>(elements));
+        for (std::size_t i = 0; i <= elements; ++i)
+            if (!positive(out.node_inertia[i]) || !positive(out.node_mass[i]))
+                detail::reject("DrillString", "elements", "few enough that each node's share of the string keeps "
+                               "a positive inertia and mass", static_cast<double>(elements));
         return out;
     }
 

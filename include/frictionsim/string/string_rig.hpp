@@ -56,6 +56,7 @@
 #include "../solve/root_location.hpp"
 #include "../solve/system_size.hpp"
 #include "../bits/bit.hpp"
+#include "scale.hpp"
 #include "sections.hpp"
 #include "string_rig_params.hpp"
 #include "top_drive.hpp"
@@ -97,6 +98,12 @@ public:
         : p_(p), setup_(std::move(setup)), law_(std::move(law)), bit_(std::move(bit)), drive_(std::move(drive)) {
         constexpr const char* who = "StringRig";
         validate_fields(who, p_, StringRigParams::fields());
+        // the BHA's weight and inertia join node N's sums: finite with a margin, else blamed here (not as the node's
+        // normal force)
+        detail::require_representable(who, p_, StringRigParams::fields(), {"end_mass"}, 1e3 * gravity * p_.end_mass,
+                                      "1e3 times the BHA's weight g m_end [N]", false);
+        detail::require_representable(who, p_, StringRigParams::fields(), {"end_inertia"}, 1e3 * p_.end_inertia,
+                                      "1e3 times the BHA's inertia J_end [kg m^2]", false);
         drive_states_ = drive_.state_count();
         if (drive_states_ > kMaxDriveStates)
             detail::reject(who, "drive", "with at most kMaxDriveStates states", static_cast<double>(drive_states_));
