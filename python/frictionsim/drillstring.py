@@ -20,6 +20,10 @@ the way a stick-slip map needs it.
 
 from __future__ import annotations
 
+import concurrent.futures as cf
+import math
+import threading
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass
 from typing import Any, Dict, Optional, Sequence
 
@@ -209,8 +213,24 @@ def wall_contacts(rig) -> int:
     return len(rig.contact_nodes)
 
 
+def _check_result(rig, result) -> None:
+    """``result`` must be a run of ``rig``'s layout: the same state names, one column each (a Result of another rig
+    gave an IndexError, or a smaller rig's columns read as this one's bit speed)."""
+    names = getattr(result, "state_names", None)
+    states = getattr(result, "states", None)
+    if names is None or states is None:
+        raise TypeError(f"result must be a Result of the rig (got {type(result).__name__})")
+    expected = list(rig.state_names)
+    if list(names) != expected or np.ndim(states) != 2 or np.shape(states)[1] != len(expected):
+        raise InvalidParameterError(
+            f"result: must be a run of this {type(rig).__name__} (its {len(expected)} states, "
+            f"{', '.join(expected[:3])}, ...); got a Result of {len(names)} states ({', '.join(list(names)[:3])}, "
+            f"...): another rig's run", "result")
+
+
 def bit_speed(rig, result: Result) -> np.ndarray:
     """Bit speed [rad/s] (node N's) at each row of ``result`` (of a StringRig or a TorsionalString)."""
+    _check_result(rig, result)
     if _string_columns(rig):
         return np.asarray(result["bit_speed"])
     return result.states[:, rig.omega_index(rig.elements)]
@@ -218,6 +238,7 @@ def bit_speed(rig, result: Result) -> np.ndarray:
 
 def surface_speed(rig, result: Result) -> np.ndarray:
     """Surface (top-drive) speed [rad/s] (node 0's) at each row."""
+    _check_result(rig, result)
     if _string_columns(rig):
         return np.asarray(result["top_drive_speed"])
     return result.states[:, rig.omega_index(0)]
@@ -231,6 +252,7 @@ AT_REST = 1e-6
 
 
 def _states_at_rest(rig: StringRig, result: Result) -> np.ndarray:
+    _check_result(rig, result)
     states = np.array(result.states)
     columns = [rig.omega_index(node) for node in (*rig.contact_nodes, rig.elements)]
     block = states[:, columns]
@@ -242,6 +264,7 @@ def _states_at_rest(rig: StringRig, result: Result) -> np.ndarray:
 def surface_torque(rig: StringRig, result: Result) -> np.ndarray:
     """Torque the surface applies [N m] at each row: the motor's under PI control (limit included), what holds
     the prescribed speed otherwise (a TorsionalString: its PI motor's torque)."""
+    _check_result(rig, result)
     if _string_columns(rig):
         return np.asarray(result["motor_torque"])
     return rig.surface_torque(result.t, _states_at_rest(rig, result))
@@ -256,6 +279,7 @@ def bit_torque(rig: StringRig, result: Result) -> np.ndarray:
 def hook_load(rig: StringRig, result: Result) -> np.ndarray:
     """The hook's force on the string [N], positive up, at each row: the prescribed hook load, or what holds the
     prescribed hook speed (axial runs; 0 in torsion-only runs)."""
+    _check_result(rig, result)
     return rig.hook_force(result.t, result.states)
 
 
@@ -287,6 +311,7 @@ class StickSlip:
 
 def stick_slip(rig: StringRig, result: Result, transient: float = 0.0) -> StickSlip:
     """The stick-slip measures of ``result`` over t >= ``transient`` [s] (see :class:`StickSlip`)."""
+    _check_result(rig, result)
     t = np.asarray(result.t)
     keep = t >= transient
     if np.count_nonzero(keep) < 2:
@@ -316,15 +341,44 @@ def replace(rig: StringRig, **changes: Any) -> StringRig:
     return rebuild(cls, args, {**kwargs, **changes}, factory)
 
 
+@contextmanager
+def _polling(stop):
+    """This thread's string runs also poll ``stop`` (an object with ``is_set()``, a threading.Event): set, a run
+    stops within the engine's poll interval (20 ms) as KeyboardInterrupt. Worker threads see no signal, so a map's
+    workers share the flag the main thread sets when it is interrupted."""
+    if stop is None:
+        yield
+        return
+    previous = _core._string_run_stop(stop)
+    try:
+        yield
+    finally:
+        _core._string_run_stop(previous)
+
+
 def stick_slip_point(*, rig: StringRig, surface_speed: float, weight_on_bit: float, t_end: float,
-                     transient: float, rtol: float = 1e-6) -> Dict[str, float]:
+                     transient: float, rtol: float = 1e-6, timeout: Optional[float] = None,
+                     stop: Any = None) -> Dict[str, float]:
     """One point of :func:`stick_slip_map`: ``rig`` at (w_set [rad/s], W [N]) from rest, its :class:`StickSlip`
-    after ``transient`` as a dict of floats (top-level and picklable, for process pools and dask)."""
+    after ``transient`` as a dict of floats (top-level and picklable, for process pools and dask), with
+    ``timed_out`` 1.0 where the run passed ``timeout`` [s of wall time] (its measures NaN) and 0.0 otherwise.
+    ``stop``: an object with ``is_set()`` the run polls (see :func:`stick_slip_map`)."""
+    from .errors import BudgetExceededError
     from .simulation import simulate
 
     point = replace(rig, surface_speed=surface_speed, weight_on_bit=weight_on_bit)
-    values = stick_slip(point, simulate(point, t_end, rtol=rtol), transient).as_dict()
+    try:
+        with _polling(stop):
+            result = simulate(point, t_end, rtol=rtol, timeout=timeout)
+    except BudgetExceededError as error:
+        if error.budget != "timeout":
+            raise
+        values = {name: math.nan for name in StickSlip.__dataclass_fields__}
+        values.update(sticks=0.0, timed_out=1.0)
+        return values
+    values = stick_slip(point, result, transient).as_dict()
     values["sticks"] = float(values["sticks"])
+    values["timed_out"] = 0.0
     return values
 
 
@@ -332,7 +386,8 @@ def stick_slip_point(*, rig: StringRig, surface_speed: float, weight_on_bit: flo
 class StickSlipMap:
     """A string's stick-slip over a (surface speed, weight on bit) grid: arrays of shape (len(surface_speeds),
     len(weights_on_bit)) of the :class:`StickSlip` measures; sticks True where the bit sticks after the transient;
-    failed True where the run failed (NaN in the float arrays, False in sticks)."""
+    failed True where the run failed (NaN in the float arrays, False in sticks); timed_out True where the point's run
+    passed the map's ``timeout`` (NaN and False likewise, not a failure)."""
 
     surface_speeds: np.ndarray
     weights_on_bit: np.ndarray
@@ -343,6 +398,7 @@ class StickSlipMap:
     surface_peak_ratio: np.ndarray
     failed: np.ndarray
     sweep: Any
+    timed_out: Optional[np.ndarray] = None
 
     def to_pandas(self):
         return self.sweep.to_pandas()
@@ -350,9 +406,13 @@ class StickSlipMap:
 
 def stick_slip_map(rig: StringRig, surface_speeds: Sequence[float], weights_on_bit: Sequence[float], *,
                    t_end: float = 60.0, transient: float = 30.0, rtol: float = 1e-6, executor: Any = None,
-                   progress: bool = False, errors: str = "collect") -> StickSlipMap:
+                   progress: bool = False, errors: str = "collect", timeout: Optional[float] = None) -> StickSlipMap:
     """Where does the string stick-slip? ``rig`` (on bottom) run from rest at every (w_set, W) point of the grid
-    through :func:`frictionsim.sweep` (threads run in parallel: the engine releases the GIL)."""
+    through :func:`frictionsim.sweep` (threads run in parallel: the engine releases the GIL).
+
+    ``timeout``: the wall time [s] each point's run may take; a point past it is recorded as timed out
+    (:attr:`StickSlipMap.timed_out`), not as a failure of the map. Ctrl-C stops the map within a fraction of a
+    second, the points running on a thread pool too (they poll a flag the interrupted main thread sets)."""
     from .sweeps import sweep
 
     if rig.bit is None:
@@ -364,14 +424,26 @@ def stick_slip_map(rig: StringRig, surface_speeds: Sequence[float], weights_on_b
             raise ValueError(f"{name} must be a non-empty sequence of positive finite values (got {values!r})")
     if not 0.0 <= transient < t_end:
         raise ValueError(f"stick_slip_map: transient must lie in [0, t_end) (got {transient} and {t_end})")
-    result = sweep(stick_slip_point, {"surface_speed": list(speeds), "weight_on_bit": list(weights)},
-                   fixed=dict(rig=rig, t_end=t_end, transient=transient, rtol=rtol), executor=executor,
-                   progress=progress, errors=errors)
+    if timeout is not None and (isinstance(timeout, (bool, str)) or not float(timeout) > 0.0):
+        raise InvalidParameterError(f"timeout: must be a positive number of seconds (got {timeout!r})", "timeout")
+    fixed = dict(rig=rig, t_end=t_end, transient=transient, rtol=rtol, timeout=timeout)
+    # the points on this process's threads poll a flag set when this thread is interrupted (a process pool or a
+    # cluster cannot share it; their workers are the executor's to stop)
+    stop = threading.Event() if executor is None or isinstance(executor, cf.ThreadPoolExecutor) else None
+    if stop is not None:
+        fixed["stop"] = stop
+    try:
+        result = sweep(stick_slip_point, {"surface_speed": list(speeds), "weight_on_bit": list(weights)},
+                       fixed=fixed, executor=executor, progress=progress, errors=errors)
+    finally:  # interrupted (or failed): the running points stop at their next poll
+        if stop is not None:
+            stop.set()
     failed = np.zeros(result.grid_shape, dtype=bool)
     failed.flat[result.failed] = True
+    timed_out = np.nan_to_num(result.as_array("timed_out"), nan=0.0) > 0.5
     return StickSlipMap(speeds, weights, result.as_array("sticks") > 0.5, result.as_array("peak_ratio"),
                         result.as_array("mean_ratio"), result.as_array("stuck_fraction"),
-                        result.as_array("surface_peak_ratio"), failed, result)
+                        result.as_array("surface_peak_ratio"), failed, result, timed_out)
 
 
 # ---------------------------------------------------------------------------------------------- plots
@@ -382,6 +454,8 @@ def speeds_panels_figure(items: Sequence[tuple], *, title: str = "", window: Opt
     """One panel per (label, rig, result): bit and surface speed [rad/s] against t [s] within ``window``."""
     from .plots import panels_for, with_style
 
+    for _, rig, result in items:  # before a figure is made
+        _check_result(rig, result)
     figure, axes = panels_for(ax, len(items), 10.0, 2.0 + 2.4 * len(items), rows=True)
     for panel, (label, rig, result) in zip(axes, items):
         t = result.t
@@ -404,6 +478,7 @@ def speeds_figure(rig: StringRig, result: Result, *, title: str = "", ax=None, *
     """Bit and surface speed [rad/s] over time (top), surface and bit torque [kN m] (bottom); ``ax``: two Axes."""
     from .plots import panels_for, with_style
 
+    _check_result(rig, result)  # before a figure is made
     figure, (top, bottom) = panels_for(ax, 2, 10.0, 6.5, rows=True)
     t = result.t
     surface = with_style({"color": "tab:blue", "lw": 1.0}, style)
@@ -426,7 +501,7 @@ def speeds_figure(rig: StringRig, result: Result, *, title: str = "", ax=None, *
 def string_stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Optional[tuple] = None, ax=None,
                                  **style: Any):
     """Peak bit speed / w_set (left) and the bit's stuck fraction (right) over (w_set, W [kN]); a black dot where
-    the bit sticks, a red cross where the run failed, a star at ``point`` (w_set, W [N]); ``ax``: two Axes; style
+    the bit sticks, a red cross where the run failed (a grey one where it timed out), a star at ``point`` (w_set, W [N]); ``ax``: two Axes; style
     keywords go to the maps (pcolormesh: ``cmap`` replaces both colour maps)."""
     from .plots import panels_for
 
@@ -452,6 +527,9 @@ def string_stick_slip_map_figure(m: StickSlipMap, *, title: str = "", point: Opt
         panel.plot(xx[m.sticks], yy[m.sticks], "o", color="k", markersize=4, linestyle="none", label="bit sticks")
         if m.failed.any():
             panel.plot(xx[m.failed], yy[m.failed], "x", color="r", markersize=6, linestyle="none", label="run failed")
+        if m.timed_out is not None and m.timed_out.any():
+            panel.plot(xx[m.timed_out], yy[m.timed_out], "x", color="0.4", markersize=6, linestyle="none",
+                       label="timed out")
         if point is not None:
             panel.plot(point[0], point[1] / 1e3, marker="*", markersize=15, color="r", markeredgecolor="k",
                        linestyle="none", label="time series")
