@@ -193,8 +193,9 @@ def _workers_ignoring_sigint(context) -> Iterator[None]:
     two-line /bin/sh wrapper, ``trap '' INT`` then exec of the interpreter (an ignored signal stays ignored
     through exec, and Python keeps it ignored), so a terminal's Ctrl-C, sent to the whole process group, reaches
     none of them while they import, before any initializer could run; this process keeps its own handler and
-    loses nothing. Without /bin/sh (Windows), or where the wrapper cannot run (a noexec temporary folder), they
-    start as before."""
+    loses nothing. Left: a signal within the millisecond between a worker's start and its wrapper's trap ends
+    that worker (quietly; the pool replaces it, and this process, interrupted too, ends the pool). Without
+    /bin/sh (Windows), or where the wrapper cannot run (a noexec temporary folder), they start as before."""
     import multiprocessing.spawn as spawn
     import subprocess
 
