@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <set>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -23,17 +24,22 @@
 #include <frictionsim/wells/oscillator_response.hpp>
 #include <frictionsim/wells/soft_string.hpp>
 
+#include "simulation.hpp"
 #include "table_binding.hpp"
 
 namespace frictionsim::python {
 
 namespace {
 
+using namespace pybind11::literals;
+
 constexpr auto condition_fields = SoftStringParams::fields();
 constexpr auto tool_fields = HydraulicOscillator::fields();
 constexpr auto drag_fields = OscillatorDragParams::fields();
 /// More elements than any well needs (a 10 km string at 1 cm): a guard against a typo allocating gigabytes.
 constexpr long max_elements = 1000000;
+/// More tools than any string carries (one to three): a longer sequence, or an endless iterator, is refused.
+constexpr std::size_t max_tools = 100;
 
 constexpr Operation operations[] = {Operation::trip_in,           Operation::trip_out,
                                     Operation::reaming,           Operation::backreaming,
@@ -55,6 +61,99 @@ py::array_t<bool> to_flags(const std::vector<std::uint8_t>& v) {
     return out;
 }
 
+/// `value` as an array of real numbers for `field`: complex numbers, text and booleans are refused by name, not
+/// converted (forcecast would drop an imaginary part; strings reach numbers only through the units layer).
+Values real_numbers(py::handle value, const char* owner, const char* field) {
+    const py::module_ np = py::module_::import("numpy");
+    const std::string where = std::string(owner) + ": " + field;
+    py::object a;
+    try {
+        a = np.attr("asarray")(value);
+    } catch (const py::error_already_set& e) {
+        throw InvalidParameter(field, where + " must be an array of numbers (" + std::string(py::str(e.value())) + ")");
+    }
+    const std::string kind = py::str(a.attr("dtype").attr("kind"));
+    if (kind == "O") {  // a list of objects: Python or NumPy real numbers only
+        const py::object real = np.attr("floating"), integer = np.attr("integer");
+        for (const py::handle x : a.attr("ravel")()) {
+            const bool ok = !py::isinstance<py::bool_>(x) &&
+                            (py::isinstance<py::float_>(x) || py::isinstance<py::int_>(x) ||
+                             py::isinstance(x, real) || py::isinstance(x, integer));
+            if (!ok) throw py::type_error(where + " must hold real numbers (got " + type_name(x) + ")");
+        }
+    } else if (kind != "f" && kind != "i" && kind != "u") {
+        const char* what = kind == "c" ? "complex numbers" : kind == "b" ? "booleans" :
+                           kind == "U" || kind == "S" ? "text" : "values of another kind";
+        throw py::type_error(where + " must hold real numbers (got " + what + ", dtype " +
+                             std::string(py::str(a.attr("dtype"))) + ")");
+    }
+    return np.attr("asarray")(a, "dtype"_a = "float64").cast<Values>();
+}
+
+/// A keyword given an array (np.array([1.0])) is refused by name: its __float__ raised numpy's own TypeError.
+void refuse_arrays(const py::kwargs& kwargs, const char* owner) {
+    for (const auto item : kwargs)
+        if (py::isinstance<py::array>(item.second) && py::array::ensure(item.second).ndim() > 0)
+            throw py::type_error(std::string(owner) + ": " + std::string(py::str(item.first)) +
+                                 " must be a number, not an array of shape " +
+                                 std::string(py::str(item.second.attr("shape"))));
+}
+
+/// Calls `function` after refusing an unconstructed instance among its arguments, self included (`skip` = 1 in
+/// __init__, whose self is the instance being built): what the construction guard of bindings/module.cpp does not
+/// reach, a class's function called with the instance (Survey.tvd.fget(s), Survey.__len__(s)), the slots the
+/// interpreter calls without attribute access (len, bool) and instances passed as arguments.
+py::object refusing_unconstructed(const py::object& function, const py::object& doc, const char* name,
+                                  std::size_t skip, py::handle cls) {
+    py::options options;
+    options.disable_function_signatures();  // the original's docstring already holds them
+    const char* text = doc.is_none() ? "" : kept(doc.cast<std::string>());
+    const auto call = [function, skip](const py::args& args, const py::kwargs& kwargs) {
+        for (std::size_t i = skip; i < args.size(); ++i) require_constructed(args[i]);
+        for (const auto item : kwargs) require_constructed(item.second);
+        return function(*args, **kwargs);
+    };
+    if (cls.is_none()) return py::cpp_function(call, py::name(name), py::doc(text));
+    return py::cpp_function(call, py::name(name), py::doc(text), py::is_method(cls));
+}
+
+/// Every method, dunder, property getter and static method of `cls` through refusing_unconstructed.
+void guard_class(py::handle cls) {
+    const py::object property = py::module_::import("builtins").attr("property");
+    std::vector<std::pair<std::string, py::object>> items;
+    for (const auto item : cls.attr("__dict__").cast<py::dict>())
+        items.emplace_back(py::str(item.first), py::reinterpret_borrow<py::object>(item.second));
+    for (const auto& [name, value] : items) {
+        const char* key = kept(name);
+        if (PyInstanceMethod_Check(value.ptr())) {
+            const auto f = py::reinterpret_borrow<py::object>(PyInstanceMethod_GET_FUNCTION(value.ptr()));
+            const py::object guarded = refusing_unconstructed(f, f.attr("__doc__"), key, name == "__init__", cls);
+            py::setattr(cls, key, guarded);
+        } else if (py::isinstance(value, property)) {
+            const py::object fget = value.attr("fget");
+            if (fget.is_none()) continue;
+            const py::object guarded = refusing_unconstructed(fget, fget.attr("__doc__"), key, 0, py::none());
+            py::setattr(cls, key, property(guarded, value.attr("fset"), value.attr("fdel"), value.attr("__doc__")));
+        } else if (py::isinstance<py::staticmethod>(value)) {
+            const py::object f = value.attr("__func__");
+            py::setattr(cls, key, py::staticmethod(refusing_unconstructed(f, f.attr("__doc__"), key, 0, py::none())));
+        }
+    }
+}
+
+/// Runs `f` with the GIL released and Ctrl-C polled between the dynamic run's steps (o.dynamic.interrupt):
+/// KeyboardInterrupt as the signal handler raised it.
+template <class F>
+auto interruptible(OscillatorDragParams& o, F&& f) {
+    o.dynamic.interrupt = &python_signal_raised;
+    try {
+        py::gil_scoped_release release;
+        return f();
+    } catch (const Interrupted&) {
+        raise_pending_python_error();
+    }
+}
+
 /// A one-dimensional array of numbers, or an InvalidParameter naming `field`.
 std::vector<double> column(const Values& values, const char* owner, const char* field) {
     if (values.ndim() != 1)
@@ -62,6 +161,68 @@ std::vector<double> column(const Values& values, const char* owner, const char* 
                                           std::to_string(values.ndim()) + " dimensions)");
     return std::vector<double>(values.data(), values.data() + values.shape(0));
 }
+
+/// The keywords of a result's constructor (what its __reduce__ gives): each one required, an unknown one refused.
+class Keywords {
+public:
+    Keywords(const py::kwargs& kwargs, const char* owner) : kwargs_(kwargs), owner_(owner) {}
+    py::handle operator[](const char* name) {
+        if (!kwargs_.contains(name))
+            throw py::type_error(owner_ + "() missing the keyword argument '" + name + "'");
+        names_.insert(name);
+        return kwargs_[name];
+    }
+    double number(const char* name) {
+        const py::handle v = (*this)[name];
+        if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v) || !py::hasattr(v, "__float__"))
+            throw py::type_error(owner_ + ": " + name + " must be a number (got " + type_name(v) + ")");
+        return v.attr("__float__")().cast<double>();
+    }
+    long count(const char* name) {
+        const py::handle v = (*this)[name];
+        if (py::isinstance<py::bool_>(v) || !py::hasattr(v, "__index__"))
+            throw py::type_error(owner_ + ": " + name + " must be a whole number (got " + type_name(v) + ")");
+        const long n = v.attr("__index__")().cast<long>();
+        if (n < 0) throw InvalidParameter(name, owner_ + ": " + name + " must be >= 0 (got " + std::to_string(n) + ")");
+        return n;
+    }
+    bool flag(const char* name) {
+        const py::handle v = (*this)[name];
+        if (!py::isinstance<py::bool_>(v))
+            throw py::type_error(owner_ + ": " + name + " must be a bool (got " + type_name(v) + ")");
+        return v.cast<bool>();
+    }
+    std::vector<double> values(const char* name) {
+        return column(real_numbers((*this)[name], owner_.c_str(), name), owner_.c_str(), name);
+    }
+    std::vector<double> values(const char* name, std::size_t size) {
+        std::vector<double> v = values(name);
+        check_size(name, v.size(), size);
+        return v;
+    }
+    std::vector<std::uint8_t> flags(const char* name, std::size_t size) {
+        const auto a = (*this)[name].cast<py::array_t<bool, py::array::c_style | py::array::forcecast>>();
+        check_size(name, static_cast<std::size_t>(a.size()), size);
+        return std::vector<std::uint8_t>(a.data(), a.data() + a.size());
+    }
+    void check_size(const char* name, std::size_t got, std::size_t size) const {
+        if (got != size)
+            throw InvalidParameter(name, owner_ + ": " + name + " must hold " + std::to_string(size) +
+                                             " values (got " + std::to_string(got) + ")");
+    }
+    /// After every keyword was read: any other is a TypeError.
+    void done() const {
+        for (const auto item : kwargs_)
+            if (!names_.count(py::str(item.first)))
+                throw py::type_error(owner_ + "() got an unexpected keyword argument '" +
+                                     std::string(py::str(item.first)) + "'");
+    }
+
+private:
+    const py::kwargs& kwargs_;
+    std::string owner_;
+    std::set<std::string> names_;
+};
 
 std::vector<SurveyStation> stations_from(const Values& md, const Values& inc, const Values& azi) {
     const std::vector<double> d = column(md, "Survey", "measured_depth"),
@@ -183,6 +344,149 @@ std::vector<double> phases(const std::vector<std::complex<double>>& z) {
     return out;
 }
 
+// ---- the results' fields as keywords and back (pickling: __reduce__ and the constructors)
+py::array to_complex_array(const std::vector<std::complex<double>>& v) {
+    return py::array_t<std::complex<double>>(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+py::dict torque_drag_keywords(const TorqueDragResult& r) {
+    py::dict d;
+    d["operation"] = operation_name(r.operation);
+    d["measured_depth"] = to_array(r.measured_depth);
+    d["tension"] = to_array(r.tension);
+    d["torque"] = to_array(r.torque);
+    d["side_force"] = to_array(r.side_force);
+    d["side_force_per_length"] = to_array(r.side_force_per_length);
+    d["sinusoidal_buckling_load"] = to_array(r.sinusoidal_buckling_load);
+    d["helical_buckling_load"] = to_array(r.helical_buckling_load);
+    d["sinusoidally_buckled"] = to_flags(r.sinusoidally_buckled);
+    d["helically_buckled"] = to_flags(r.helically_buckled);
+    return d;
+}
+
+TorqueDragResult torque_drag_result_from(const py::kwargs& kwargs) {
+    Keywords k(kwargs, "TorqueDragResult");
+    TorqueDragResult r;
+    r.operation = operation_from(k["operation"]);
+    r.measured_depth = k.values("measured_depth");
+    const std::size_t nodes = r.measured_depth.size();
+    if (nodes < 2) k.check_size("measured_depth", nodes, 2);
+    r.tension = k.values("tension", nodes);
+    r.torque = k.values("torque", nodes);
+    r.side_force = k.values("side_force", nodes - 1);
+    r.side_force_per_length = k.values("side_force_per_length", nodes - 1);
+    r.sinusoidal_buckling_load = k.values("sinusoidal_buckling_load", nodes);
+    r.helical_buckling_load = k.values("helical_buckling_load", nodes);
+    r.sinusoidally_buckled = k.flags("sinusoidally_buckled", nodes);
+    r.helically_buckled = k.flags("helically_buckled", nodes);
+    k.done();
+    return r;
+}
+
+py::dict response_keywords(const OscillatorResponse& r) {
+    py::dict d;
+    d["measured_depth"] = to_array(r.measured_depth);
+    d["phasor"] = to_complex_array(r.phasor);
+    d["reversed"] = to_array(r.reversed);
+    d["friction_factor"] = to_array(r.friction_factor);
+    d["amplitude"] = to_array(r.amplitude);
+    d["excitation_node"] = r.excitation_node;
+    d["transient"] = r.transient;
+    d["measured_time"] = r.measured_time;
+    d["reach"] = r.reach;
+    d["settled"] = r.settled;
+    d["steps"] = r.stats.steps;
+    d["events"] = r.stats.events;
+    return d;
+}
+
+OscillatorResponse oscillator_response_from(const py::kwargs& kwargs) {
+    Keywords k(kwargs, "OscillatorResponse");
+    OscillatorResponse r;
+    r.measured_depth = k.values("measured_depth");
+    const std::size_t nodes = r.measured_depth.size();
+    if (nodes < 2) k.check_size("measured_depth", nodes, 2);
+    const auto phasor = k["phasor"].cast<py::array_t<std::complex<double>, py::array::c_style | py::array::forcecast>>();
+    k.check_size("phasor", static_cast<std::size_t>(phasor.size()), nodes);
+    r.phasor.assign(phasor.data(), phasor.data() + phasor.size());
+    r.reversed = k.values("reversed", nodes);
+    r.friction_factor = k.values("friction_factor", nodes);
+    r.amplitude = k.values("amplitude", nodes);
+    r.excitation_node = static_cast<std::size_t>(k.count("excitation_node"));
+    if (r.excitation_node >= nodes)
+        throw InvalidParameter("excitation_node", "OscillatorResponse: excitation_node must be a node, < " +
+                                                      std::to_string(nodes));
+    r.transient = k.number("transient");
+    r.measured_time = k.number("measured_time");
+    r.reach = k.number("reach");
+    r.settled = k.flag("settled");
+    r.stats.steps = k.count("steps");
+    r.stats.events = k.count("events");
+    k.done();
+    return r;
+}
+
+py::dict drag_keywords(const OscillatorDragResult& r) {
+    py::dict d;
+    d["plain"] = r.plain;
+    d["vibrated"] = r.vibrated;
+    d["vibration_amplitude"] = to_array(r.vibration_amplitude);
+    d["axial_factor"] = to_array(r.multipliers.axial);
+    d["circumferential_factor"] = to_array(r.multipliers.circumferential);
+    d["reduction"] = to_array(r.reduction);
+    d["zone_top"] = r.zone_top;
+    d["zone_bottom"] = r.zone_bottom;
+    d["zone_length"] = r.zone_length;
+    d["coupling_passes"] = r.coupling_passes;
+    d["converged"] = r.converged;
+    d["source"] = vibration_source_name(r.source);
+    d["responses"] = r.responses;
+    return d;
+}
+
+OscillatorDragResult drag_result_from(const py::kwargs& kwargs) {
+    Keywords k(kwargs, "OscillatorDragResult");
+    OscillatorDragResult r;
+    for (const auto& [name, into] : {std::pair{"plain", &r.plain}, std::pair{"vibrated", &r.vibrated}}) {
+        const py::handle v = k[name];
+        require_constructed(v);
+        if (!py::isinstance<TorqueDragResult>(v))
+            throw py::type_error(std::string("OscillatorDragResult: ") + name + " must be a TorqueDragResult (got " +
+                                 type_name(v) + ")");
+        *into = v.cast<TorqueDragResult>();
+    }
+    const std::size_t elements = r.plain.side_force.size();
+    k.check_size("vibrated", r.vibrated.side_force.size(), elements);
+    r.vibration_amplitude = k.values("vibration_amplitude", elements);
+    r.multipliers.axial = k.values("axial_factor", elements);
+    r.multipliers.circumferential = k.values("circumferential_factor", elements);
+    r.reduction = k.values("reduction", elements);
+    r.zone_top = k.number("zone_top");
+    r.zone_bottom = k.number("zone_bottom");
+    r.zone_length = k.number("zone_length");
+    r.coupling_passes = static_cast<std::size_t>(k.count("coupling_passes"));
+    r.converged = k.flag("converged");
+    const py::handle source = k["source"];
+    const std::string name = py::isinstance<py::str>(source) ? source.cast<std::string>() : "";
+    if (name != "wave" && name != "dynamic")
+        throw InvalidParameter("source", "OscillatorDragResult: source must be 'wave' or 'dynamic' (got " +
+                                             std::string(py::repr(source)) + ")");
+    r.source = name == "wave" ? VibrationSource::wave : VibrationSource::dynamic;
+    const py::handle responses = k["responses"];
+    if (!py::isinstance<py::list>(responses) && !py::isinstance<py::tuple>(responses))
+        throw py::type_error("OscillatorDragResult: responses must be a list of OscillatorResponse (got " +
+                             type_name(responses) + ")");
+    for (const py::handle item : responses) {
+        require_constructed(item);
+        if (!py::isinstance<OscillatorResponse>(item))
+            throw py::type_error("OscillatorDragResult: responses must hold OscillatorResponse objects (got " +
+                                 type_name(item) + ")");
+        r.responses.push_back(item.cast<OscillatorResponse>());
+    }
+    k.done();
+    return r;
+}
+
 /// fs.OscillatorResponse: one tool's dynamic run (read-only arrays per node of the dynamic model).
 void register_oscillator_response(py::module_& m) {
     py::class_<OscillatorResponse>(m, "OscillatorResponse", R"doc(
@@ -193,7 +497,15 @@ surface): measured_depth [m], first_harmonic [m/s] and phase [rad] of the axial 
 (v ~ V + first_harmonic sin(omega t + phase)), reversed (share of the cycle sliding against the operation),
 friction_factor (the wall's cycle-mean friction over mu N, from each node's mean balance) and amplitude [m/s]
 (what the friction sees: the first harmonic, at most the amplitude of the sinusoid with that mean friction).
+Built by SoftString.oscillator_response; OscillatorResponse(**fields) rebuilds one from its fields (pickling).
 )doc")
+        .def(py::init([](const py::kwargs& kwargs) { return oscillator_response_from(kwargs); }))
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(), response_keywords(self.cast<const OscillatorResponse&>()));
+        })
+        .def_property_readonly("phasor", [](const OscillatorResponse& r) { return to_complex_array(r.phasor); },
+                               "Per node, the first harmonic as a complex amplitude [m/s]: "
+                               "first_harmonic * exp(1j * phase).")
         .def_property_readonly("measured_depth", [](const OscillatorResponse& r) { return to_array(r.measured_depth); },
                                "Measured depth of each node of the dynamic model [m].")
         .def_property_readonly("first_harmonic",
@@ -236,6 +548,7 @@ const char* const vibration_keywords_doc =
 SoftStringParams conditions_from(const py::kwargs& kwargs, const char* owner = "SoftString.run",
                                  OscillatorDragParams* tools = nullptr) {
     SoftStringParams p{};
+    refuse_arrays(kwargs, owner);
     std::size_t used = read_field_keywords(p, kwargs, condition_fields, owner);
     if (tools) {
         used += read_field_keywords(*tools, kwargs, drag_fields, owner);
@@ -272,12 +585,16 @@ SoftStringParams conditions_from(const py::kwargs& kwargs, const char* owner = "
 }
 
 std::vector<HydraulicOscillator> tools_from(py::handle tools, const char* owner) {
+    require_constructed(tools);
     if (py::isinstance<HydraulicOscillator>(tools)) return {tools.cast<HydraulicOscillator>()};
     if (py::isinstance<py::str>(tools) || !py::hasattr(tools, "__iter__"))
         throw py::type_error(std::string(owner) + ": tools must be a HydraulicOscillator or a sequence of them (got " +
                              type_name(tools) + ")");
     std::vector<HydraulicOscillator> out;
     for (py::handle t : tools) {
+        if (out.size() == max_tools)  // an endless iterator stops here
+            throw InvalidParameter("tools", std::string(owner) + ": tools must hold at most " +
+                                                std::to_string(max_tools) + " tools (a string carries one to three)");
         require_constructed(t);
         if (!py::isinstance<HydraulicOscillator>(t))
             throw py::type_error(std::string(owner) + ": tools must hold HydraulicOscillator objects (got " +
@@ -332,8 +649,7 @@ void def_oscillator_response(Cls& cls) {
                 const Operation op = operation_from(operation);
                 OscillatorDragParams o;
                 const SoftStringParams p = conditions_from(kwargs, "SoftString.oscillator_response", &o);
-                py::gil_scoped_release release;
-                return s.tools.response_model().response(op, p, tool, o.dynamic);
+                return interruptible(o, [&] { return s.tools.response_model().response(op, p, tool, o.dynamic); });
             },
             kept("oscillator_response(self, operation: str, tool: HydraulicOscillator, **keywords) -> "
                  "OscillatorResponse\n\nOne tool's periodic steady-state response from the dynamic axial string "
@@ -381,18 +697,24 @@ station; dogleg [rad] and dogleg_severity [rad/m] per station of the course endi
 A bad survey (fewer than two stations, NaN, depth not increasing, inclination outside 0..180 degrees, a course that
 reverses the direction) raises InvalidParameterError (a ValueError) naming the station and the field.
 )doc");
+    survey.attr("parameters") = parameter_infos(SurveyStation::fields());
     options.disable_function_signatures();
     survey
-        .def(py::init([](const Values& md, const Values& inc, const Values& azi) {
-                 return Survey(stations_from(md, inc, azi));
+        .def(py::init([](py::handle md, py::handle inc, py::handle azi) {
+                 return Survey(stations_from(real_numbers(md, "Survey", "measured_depth"),
+                                             real_numbers(inc, "Survey", "inclination"),
+                                             real_numbers(azi, "Survey", "azimuth")));
              }),
              "__init__(self, measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, "
              "azimuth: numpy.typing.ArrayLike) -> None\n\nStations in SI: measured depth [m], inclination and "
              "azimuth [rad].\n",
              py::arg("measured_depth"), py::arg("inclination"), py::arg("azimuth"))
         .def_static("from_degrees",
-                    [](const Values& md, const Values& inc, const Values& azi) {
-                        return Survey::from_degrees(stations_from(md, inc, azi));
+                    [](py::handle md, py::handle inc, py::handle azi) {
+                        const char* owner = "Survey.from_degrees";
+                        return Survey::from_degrees(stations_from(real_numbers(md, owner, "measured_depth"),
+                                                                  real_numbers(inc, owner, "inclination"),
+                                                                  real_numbers(azi, owner, "azimuth")));
                     },
                     "from_degrees(measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, "
                     "azimuth: numpy.typing.ArrayLike) -> Survey\n\nStations with measured depth [m], inclination "
@@ -421,10 +743,13 @@ reverses the direction) raises InvalidParameterError (a ValueError) naming the s
                                "Dogleg angle of the course ending at each station [rad] (0 at station 0).")
         .def_property_readonly("dogleg_severity", [](const Survey& s) { return to_array(per_course(s, true)); },
                                "Dogleg severity of the course ending at each station [rad/m] (0 at station 0); "
-                               "times 180/pi * 30 for degrees per 30 m.")
-        .def("interpolate",
-             [](const Survey& s, const Values& md) {
-                 const std::vector<double> depths = column(md, "Survey.interpolate", "measured_depth");
+                               "times 180/pi * 30 for degrees per 30 m.");
+    options.disable_function_signatures();  // the signature as pybind11 writes it for an array (real_numbers reads it)
+    survey.def("interpolate",
+             [](const Survey& s, py::handle given) {
+                 const char* owner = "Survey.interpolate";
+                 const std::vector<double> depths =
+                     column(real_numbers(given, owner, "measured_depth"), owner, "measured_depth");
                  std::vector<double> inc, azi, north, east, tvd, curvature;
                  for (double d : depths) {
                      const WellPoint p = s.at(d);
@@ -445,11 +770,14 @@ reverses the direction) raises InvalidParameterError (a ValueError) naming the s
                  out["curvature"] = to_array(curvature);
                  return out;
              },
+             "interpolate(self: frictionsim._core.Survey, measured_depth: typing.Annotated[numpy.typing.ArrayLike, "
+             "numpy.float64]) -> dict\n\n"
              "The well at each measured depth [m] (within the survey) on the minimum-curvature arcs: a dict of "
              "arrays measured_depth, inclination and azimuth [rad] (azimuth in [0, 2 pi)), north, east, tvd [m] "
-             "and curvature [rad/m] (the dogleg severity of the course holding it).",
-             py::arg("measured_depth"))
-        .def("__len__", &Survey::size)
+             "and curvature [rad/m] (the dogleg severity of the course holding it).\n",
+             py::arg("measured_depth"));
+    options.enable_function_signatures();
+    survey.def("__len__", &Survey::size)
         .def("__repr__", &survey_repr)
         .def("__reduce__", [](py::handle self) {
             const auto& s = self.cast<const Survey&>();
@@ -465,7 +793,12 @@ Torque and drag of one operation along the string: per node (N + 1, node 0 at th
 tension (effective, compression < 0) [N], torque [N m], the Dawson-Paslay sinusoidal and Chen-Lin-Cheatham helical
 buckling loads [N] and the flags where the compression exceeds them; per element (N) side_force [N] and
 side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_torque [N m] are node 0's.
+Built by SoftString.run; TorqueDragResult(**fields) rebuilds one from its fields (pickling).
 )doc")
+        .def(py::init([](const py::kwargs& kwargs) { return torque_drag_result_from(kwargs); }))
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(), torque_drag_keywords(self.cast<const TorqueDragResult&>()));
+        })
         .def_property_readonly("operation", [](const TorqueDragResult& r) { return operation_name(r.operation); })
         .def_property_readonly("measured_depth", [](const TorqueDragResult& r) { return to_array(r.measured_depth); },
                                "Measured depth of each node [m].")
@@ -505,6 +838,7 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
         "a measured depth (drillstring/axial_wave.hpp).\n\nKeywords\n--------\n" + keywords_doc(tool_fields)));
     tool.def(py::init([](const py::kwargs& kwargs) {
                  HydraulicOscillator t{};
+                 refuse_arrays(kwargs, "HydraulicOscillator");
                  const std::size_t used = read_field_keywords(t, kwargs, tool_fields, "HydraulicOscillator");
                  if (used != kwargs.size())
                      for (auto item : kwargs)
@@ -529,7 +863,12 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
     py::class_<OscillatorDragResult>(m, "OscillatorDragResult",
                                      "One operation with and without the tools: the plain and vibrated torque and "
                                      "drag, per element the vibration amplitude and friction factors, the zone of "
-                                     "influence and the changes at the surface.")
+                                     "influence and the changes at the surface. Built by SoftString.oscillators; "
+                                     "OscillatorDragResult(**fields) rebuilds one from its fields (pickling).")
+        .def(py::init([](const py::kwargs& kwargs) { return drag_result_from(kwargs); }))
+        .def("__reduce__", [](py::handle self) {
+            return reduce_by_construction(self, py::tuple(), drag_keywords(self.cast<const OscillatorDragResult&>()));
+        })
         .def_property_readonly("plain", [](const OscillatorDragResult& r) { return r.plain; },
                                "TorqueDragResult without the tools (a copy).")
         .def_property_readonly("vibrated", [](const OscillatorDragResult& r) { return r.vibrated; },
@@ -618,8 +957,7 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                 OscillatorDragParams o;
                 const SoftStringParams p = conditions_from(kwargs, "SoftString.oscillators", &o);
                 const std::vector<HydraulicOscillator> t = tools_from(tools, "SoftString.oscillators");
-                py::gil_scoped_release release;
-                return s.tools.run(op, p, t, o);
+                return interruptible(o, [&] { return s.tools.run(op, p, t, o); });
             },
             kept("oscillators(self, operation: str, tools: HydraulicOscillator | list[HydraulicOscillator], **keywords) "
                  "-> OscillatorDragResult\n\nOne operation with and without axial vibration tools: each tool's wave "
@@ -631,8 +969,7 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                 OscillatorDragParams o;
                 const SoftStringParams p = conditions_from(kwargs, "SoftString.sliding_weight_on_bit", &o);
                 const std::vector<HydraulicOscillator> t = tools_from(tools, "SoftString.sliding_weight_on_bit");
-                py::gil_scoped_release release;
-                return s.tools.weight_on_bit_at(hook_load, p, t, o);
+                return interruptible(o, [&] { return s.tools.weight_on_bit_at(hook_load, p, t, o); });
             },
             kept("sliding_weight_on_bit(self, hook_load: float, tools: HydraulicOscillator | list[HydraulicOscillator], "
                  "**keywords) -> float\n\nThe weight on bit [N] transferred while sliding at the hook load [N] with "
@@ -683,6 +1020,10 @@ side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_t
                                                                s.model.elements(),
                                                                torque_drag_method_name(s.model.method())));
         });
+
+    for (const char* name : {"Survey", "TorqueDragResult", "OscillatorResponse", "HydraulicOscillator",
+                             "OscillatorDragResult", "SoftString"})
+        guard_class(m.attr(name));
 }
 
 }  // namespace frictionsim::python

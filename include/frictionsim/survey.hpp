@@ -23,6 +23,7 @@
 
 #include "detail/constants.hpp"
 #include "detail/validate.hpp"
+#include "parameters.hpp"
 
 namespace frictionsim {
 
@@ -32,7 +33,21 @@ struct SurveyStation {
     double measured_depth = 0.0;
     double inclination = 0.0;
     double azimuth = 0.0;
+
+    /// Each station's rules (what Survey checks; Python's Survey.parameters). Across stations: measured depth
+    /// strictly increasing, no course turning by 180 degrees.
+    static constexpr std::array<Field<SurveyStation>, 3> fields();
 };
+
+inline constexpr std::array<Field<SurveyStation>, 3> SurveyStation::fields() {
+    using P = SurveyStation;
+    return {{
+        {"measured_depth", "MD", "m", Rule::finite().because("strictly increasing from station to station"),
+         &P::measured_depth, "Measured depth along the hole."},
+        {"inclination", "I", "rad", Rule::interval(0.0, pi), &P::inclination, "Inclination from vertical."},
+        {"azimuth", "A", "rad", Rule::finite(), &P::azimuth, "Azimuth from north towards east."},
+    }};
+}
 
 /// The well at one measured depth: direction, position relative to the first station (north, east, true vertical
 /// depth, all m) and the curvature of the course it lies on (the dogleg severity, rad/m).
@@ -184,6 +199,7 @@ private:
             detail::reject(owner, "stations", "at least 2 (a survey needs a course)",
                            static_cast<double>(stations_.size()));
         const double to_rad = degrees ? pi / 180.0 : 1.0;
+        constexpr Rule inclination = SurveyStation::fields()[1].rule;  // [0, pi]: in degrees [0, 180] exactly
         for (std::size_t i = 0; i < stations_.size(); ++i) {
             SurveyStation& st = stations_[i];
             const std::string who = "Survey: station " + std::to_string(i);
@@ -194,7 +210,8 @@ private:
                                 std::to_string(stations_[i - 1].measured_depth) + " m): depths strictly increase")
                                    .c_str(),
                                st.measured_depth);
-            if (!(std::isfinite(st.inclination) && st.inclination >= 0.0 && st.inclination <= pi / to_rad))
+            if (!(std::isfinite(st.inclination) && st.inclination >= inclination.lower / to_rad &&
+                  st.inclination <= inclination.upper / to_rad))
                 detail::reject(who.c_str(), "inclination", degrees ? "in [0, 180] degrees" : "in [0, pi] rad",
                                st.inclination);
             detail::require_finite(who.c_str(), "azimuth", st.azimuth);

@@ -19,10 +19,14 @@ draws them. SI units: metres, newtons, radians inside; survey files give their u
 
 from __future__ import annotations
 
+import codecs
 import csv
+import itertools
 import logging
 import math
+import os
 import re
+import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
@@ -94,6 +98,25 @@ ELEMENT_LENGTH = 10.0
 
 PathLike = Union[str, Path]
 
+#: The largest survey file read [bytes]: a survey of 100,000 stations is ~5 MB (a station every 0.1 m of a 10 km
+#: well); anything larger is not a survey listing, and /dev/zero or a huge file would fill the memory.
+MAX_SURVEY_BYTES = 64 * 2**20
+#: The longest line of a survey file [characters]: a station row is tens of characters, a header hundreds.
+MAX_SURVEY_LINE = 65536
+#: Control characters a text survey never holds (tab, newline, carriage return, form feed and vertical tab are
+#: whitespace): their presence means a binary file.
+_CONTROL = re.compile("[\x00-\x08\x0e-\x1f\x7f-\x9f]")
+#: The most soft-string element evaluations one broomstick takes: sum over its bit depths of the elements there,
+#: times friction factors and operations. Measured 1.3e6 evaluations/s at 10 m elements (the Python per depth
+#: dominates) to 1.4e7/s at 1 m, so 2e8 is 15 s to 2.5 min; a 10 km well every 5 m with 10 m elements, 4 factors
+#: and 3 operations needs 1.2e8. A depth step of 1 mm on 3 km needs 5e9.
+MAX_BROOMSTICK_WORK = 2e8
+#: The most bit depths of one broomstick (each builds a soft string and runs it: ~1.4 ms per depth measured, so
+#: 100,000 depths are ~2.5 min).
+MAX_BROOMSTICK_DEPTHS = 100_000
+#: The most friction factors, operations or frequencies a loop takes (an endless iterator stops there).
+MAX_LIST = 10_000
+
 
 # --------------------------------------------------------------------------------------------------------- surveys
 def survey_from(measured_depth, inclination, azimuth, *, depth_unit: str = "m", angle_unit: str = "deg") -> Survey:
@@ -117,12 +140,12 @@ def read_survey(path: PathLike, *, depth_unit: Optional[str] = None, angle_unit:
     values, measured depth strictly increasing, inclination in 0..180 degrees).
     """
     path = Path(path)
+    lines_of_text = _survey_lines(path)
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except OSError as error:
-        raise InvalidParameterError(f"{path}: cannot read the survey ({error.strerror or error})", "path") from None
-    rows = [(number, row) for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-            if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")]
+        rows = [(number, row) for number, row in enumerate(csv.reader(lines_of_text), start=1)
+                if row and any(cell.strip() for cell in row) and not row[0].lstrip().startswith("#")]
+    except csv.Error as error:
+        raise InvalidParameterError(f"{path}: not a survey listing the csv module can read ({error})", "path") from None
     if not rows:
         raise InvalidParameterError(f"{path}: no header row (expected columns md, inc, azi)", "header")
     header_line, header = rows[0]
@@ -169,6 +192,92 @@ def read_survey(path: PathLike, *, depth_unit: Optional[str] = None, angle_unit:
         line = f"line {lines[int(found.group(1))]}: " if found and int(found.group(1)) < len(lines) else ""
         feet = " (depths quoted in m, the file's in ft)" if depth == "ft" else ""
         raise InvalidParameterError(f"{path}: {line}{message}{feet}", error.parameter) from None
+
+
+def _survey_lines(path: Path) -> List[str]:
+    """The lines of a survey file: a regular file of at most MAX_SURVEY_BYTES, in UTF-8, UTF-16 or UTF-32 with their
+    byte-order mark, else Windows-1252 / Latin-1 (a degree sign written as byte 0xB0); a FIFO, a device, a binary file
+    or an over-long line is an InvalidParameterError naming ``path``."""
+    try:
+        # non-blocking: a FIFO opens without waiting for a writer (then refused as not a regular file)
+        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except ValueError as error:  # a NUL in the name
+        raise InvalidParameterError(f"{str(path)!r}: not a file name ({error})", "path") from None
+    except OSError as error:
+        raise InvalidParameterError(f"{path}: cannot read the survey ({error.strerror or error})", "path") from None
+    try:
+        mode = os.fstat(descriptor).st_mode
+    except BaseException:
+        os.close(descriptor)
+        raise
+    if not stat.S_ISREG(mode):
+        os.close(descriptor)
+        kind = ("a directory" if stat.S_ISDIR(mode) else "a FIFO" if stat.S_ISFIFO(mode) else
+                "a device" if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else "a socket or other special file")
+        raise InvalidParameterError(f"{path}: {kind}, not a regular file: a survey is read from a file", "path")
+    with os.fdopen(descriptor, "rb") as file:
+        data = file.read(MAX_SURVEY_BYTES + 1)
+    if len(data) > MAX_SURVEY_BYTES:
+        raise InvalidParameterError(f"{path}: larger than {MAX_SURVEY_BYTES // 2**20} MiB, the most a survey file "
+                                    "may hold (100,000 stations take ~5 MB)", "path")
+    text = _decode(data, path)
+    lines = text.splitlines()
+    for number, line in enumerate(lines, start=1):
+        if len(line) > MAX_SURVEY_LINE:
+            raise InvalidParameterError(f"{path}: line {number}: {len(line)} characters, more than the "
+                                        f"{MAX_SURVEY_LINE} a survey line may hold: not a survey listing", "path")
+    return lines
+
+
+def _decode(data: bytes, path: Path) -> str:
+    """Survey bytes as text (see _survey_lines); a binary file is refused naming it."""
+    marks = ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"), (codecs.BOM_UTF8, "utf-8-sig"),
+             (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
+    encoding = next((codec for mark, codec in marks if data.startswith(mark)), None)
+    try:
+        if encoding is not None:
+            text = data.decode(encoding)
+        else:
+            try:
+                text = data.decode("utf-8")
+            except UnicodeDecodeError:
+                text = data.decode("cp1252")  # a Windows program's degree sign (0xB0), as in Latin-1
+    except UnicodeDecodeError as error:
+        raise InvalidParameterError(f"{path}: not a text survey file (neither {encoding or 'UTF-8 nor Windows-1252'}:"
+                                    f" {error.reason} at byte {error.start})", "path") from None
+    found = _CONTROL.search(text)
+    if found:
+        line = text.count("\n", 0, found.start()) + 1
+        raise InvalidParameterError(f"{path}: line {line}: control character U+{ord(found.group()):04X}: a binary "
+                                    "file, not a text survey listing", "path")
+    return text
+
+
+def _bounded_list(values: Any, name: str, limit: int = MAX_LIST) -> list:
+    """``values`` as a list of at most ``limit`` items (an endless iterator is cut there and refused)."""
+    if isinstance(values, (str, bytes)):
+        raise InvalidParameterError(f"{name} must be a sequence of values, not text (got {values!r})", name)
+    try:
+        items = list(itertools.islice(iter(values), limit + 1))
+    except TypeError:
+        raise InvalidParameterError(f"{name} must be a sequence of values (got {type(values).__name__})",
+                                    name) from None
+    if len(items) > limit:
+        raise InvalidParameterError(f"{name} must hold at most {limit} values", name)
+    return items
+
+
+def _numbers(values: Any, name: str, limit: int = MAX_LIST) -> List[float]:
+    """``values`` (a sequence, at most ``limit``) as floats; text, booleans and complex numbers are refused by name
+    (strings reach numbers only through the units layer)."""
+    out = []
+    if isinstance(values, (int, float, np.integer, np.floating)) and not isinstance(values, bool):
+        values = [values]  # one number: a sequence of one
+    for value in _bounded_list(np.ravel(values) if isinstance(values, np.ndarray) else values, name, limit):
+        if isinstance(value, (str, bytes, bool, np.bool_, complex, np.complexfloating)) or not hasattr(value, "__float__"):
+            raise InvalidParameterError(f"{name} must hold real numbers (got {type(value).__name__} {value!r})", name)
+        out.append(float(value))
+    return out
 
 
 def _split_unit(cell: str, path: Path, line: int) -> Tuple[str, Optional[str]]:
@@ -319,21 +428,36 @@ def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[f
     the cased-hole one too (the usual practice: a known casing factor, the open-hole one calibrated against the
     plot). ``depths``: the bit depths [m] (default every ``depth_step`` metres and the string's full length).
     Rotating off bottom carries no axial friction: its hook load is the same for every friction factor.
-    ``method`` as in :func:`soft_string`.
+    ``method`` as in :func:`soft_string`. The work is estimated first and refused beyond
+    :data:`MAX_BROOMSTICK_DEPTHS` bit depths or :data:`MAX_BROOMSTICK_WORK` element evaluations (depths x elements
+    x friction factors x operations), naming ``depth_step`` or ``depths``.
     """
-    factors = tuple(float(mu) for mu in friction_factors)
+    factors = tuple(_numbers(friction_factors, "friction_factors"))
     if not factors:
         raise InvalidParameterError("broomstick: friction_factors must hold at least one value", "friction_factors")
+    operations = tuple(_bounded_list(operations, "operations"))
     for op in operations:
         if op not in OPERATIONS:
             raise InvalidParameterError(f"broomstick: operation must be one of {', '.join(OPERATIONS)} (got {op!r})",
                                         "operations")
+    if not (math.isfinite(element_length) and element_length > 0.0):
+        raise InvalidParameterError(f"element_length must be positive and finite (got {element_length!r})",
+                                    "element_length")
+    runs = len(factors) * len(operations)
+    length = string.length
     if depths is None:
         if not (math.isfinite(depth_step) and depth_step > 0.0):
             raise InvalidParameterError(f"broomstick: depth_step must be positive and finite (got {depth_step!r})",
                                         "depth_step")
-        grid = np.arange(depth_step, string.length, depth_step)
-        depths = np.append(grid[grid < string.length - 1e-9 * string.length], string.length)
+        # the work before the grid: ~L / step depths of ~L / (2 element_length) elements each
+        count = length / depth_step + 1.0
+        _check_broomstick_work(count, count * (0.5 * length / element_length + 1.0) * runs, "depth_step", depth_step)
+        grid = np.arange(depth_step, length, depth_step)
+        depths = np.append(grid[grid < length - 1e-9 * length], length)
+    else:
+        depths = _numbers(depths, "depths", MAX_BROOMSTICK_DEPTHS)
+        work = sum(max(1.0, math.ceil(d / element_length)) for d in depths if math.isfinite(d)) * runs
+        _check_broomstick_work(len(depths), work, "depths", f"{len(depths)} bit depths")
     vary_cased = "cased_hole_friction" not in conditions
     rows: Dict[str, list] = {"bit_depth": [], "friction_factor": [], "operation": [], "hook_load": [],
                              "surface_torque": []}
@@ -354,6 +478,17 @@ def broomstick(survey: Survey, string: DrillString, friction_factors: Sequence[f
     import pandas as pd
 
     return Broomstick(pd.DataFrame(rows), factors, tuple(operations), dict(conditions))
+
+
+def _check_broomstick_work(depths: float, work: float, parameter: str, given: Any) -> None:
+    """Refuses a broomstick beyond MAX_BROOMSTICK_DEPTHS bit depths or MAX_BROOMSTICK_WORK element evaluations,
+    naming ``parameter`` (the depth step, or the depths given)."""
+    if depths > MAX_BROOMSTICK_DEPTHS or work > MAX_BROOMSTICK_WORK:
+        raise InvalidParameterError(
+            f"broomstick: {parameter} = {given!r} asks for {depths:.3g} bit depths and {work:.3g} soft-string element "
+            f"evaluations (depths x elements x friction factors x operations); the limits are "
+            f"{MAX_BROOMSTICK_DEPTHS} depths and {MAX_BROOMSTICK_WORK:.3g} evaluations (a few minutes): take a "
+            f"coarser depth_step, longer elements or fewer depths", parameter)
 
 
 # ----------------------------------------------------------------------------------------------------------- plots
@@ -494,7 +629,7 @@ def frequency_scan(model: SoftString, tool: HydraulicOscillator, frequencies: Se
     dynamic run's included). The zone of influence of the dynamic route at the default 5 % threshold can span the
     string: beyond the tool's reach a slowly sliding string sticks and slips forward at the tool's frequency, which
     lowers its mean friction 5-20 %; ``zone_threshold=0.5`` gives the zone's core."""
-    freqs = np.asarray(frequencies, dtype=float).ravel()
+    freqs = np.asarray(_numbers(frequencies, "frequencies"), dtype=float)
     if freqs.size == 0 or not np.all(np.isfinite(freqs)) or not np.all(freqs > 0.0):
         raise InvalidParameterError(f"frequency_scan: frequencies must be positive and finite, at least one (got "
                                     f"{frequencies!r})", "frequencies")

@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -203,14 +204,20 @@ public:
         };
         double lo = 0.0, r_lo = residual(0.0);
         if (!(r_lo > 0.0)) return 0.0;
-        double hi = r_lo, r_hi = residual(hi);  // a straight hole's answer when the drag does not change
-        for (int k = 0; r_hi > 0.0; ++k) {
-            if (k == 60)
-                detail::reject("OscillatorDrag", "hook_load", "reachable by some weight on bit while sliding",
-                               hook_load);
+        // a straight hole's answer when the drag does not change; doubled up to the weight on bit's own limit (a
+        // hook load beyond it is the caller's, not the weight on bit's, to be refused)
+        const double most = max_weight_on_bit();
+        double hi = std::min(r_lo, most), r_hi = residual(hi);
+        while (r_hi > 0.0) {
+            if (hi >= most) {
+                const std::string rule = "reachable while sliding by a weight on bit within the limit of " +
+                                         std::to_string(most) + " N (at least the hook load with it, " +
+                                         std::to_string(state.result.hook_load()) + " N)";
+                detail::reject("OscillatorDrag", "hook_load", rule.c_str(), hook_load);
+            }
             lo = hi;
             r_lo = r_hi;
-            hi *= 2.0;
+            hi = std::min(2.0 * hi, most);
             r_hi = residual(hi);
         }
         detail::IllinoisBracket b{lo, r_lo, hi, r_hi};
@@ -234,6 +241,13 @@ private:
         bool converged = true;
     };
 
+    /// The upper end of SoftStringParams' weight_on_bit rule.
+    static double max_weight_on_bit() {
+        for (const Field<SoftStringParams>& f : SoftStringParams::fields())
+            if (f.member == &SoftStringParams::weight_on_bit) return f.rule.upper;
+        return 0.0;
+    }
+
     static bool any_active(const std::vector<HydraulicOscillator>& tools) {
         for (const HydraulicOscillator& tool : tools)
             if (tool.force_amplitude > 0.0) return true;
@@ -243,8 +257,20 @@ private:
     void check(Operation op, const SoftStringParams& p, const std::vector<HydraulicOscillator>& tools,
                const OscillatorDragParams& o) const {
         validate_fields("OscillatorDragParams", o, OscillatorDragParams::fields());
-        if (o.source == VibrationSource::dynamic)
-            for (const HydraulicOscillator& tool : tools) response_.check(op, p, tool, o.dynamic);
+        if (o.source == VibrationSource::dynamic) {
+            double work = 0.0;  // one dynamic run per active tool: their sum within one run's limit
+            for (const HydraulicOscillator& tool : tools) {
+                response_.check(op, p, tool, o.dynamic);
+                if (tool.force_amplitude > 0.0) work += response_.node_cycles(tool.frequency, o.dynamic);
+            }
+            if (!(work <= OscillatorResponseParams::max_node_cycles)) {
+                std::ostringstream rule;
+                rule.precision(3);
+                rule << "few enough for the dynamic runs' work together (elements x cycles simulated, " << work
+                     << ") to stay within " << OscillatorResponseParams::max_node_cycles << " (hours on one core)";
+                detail::reject("OscillatorDrag", "tools", rule.str().c_str(), static_cast<double>(tools.size()));
+            }
+        }
         validate_fields("SoftStringParams", p, SoftStringParams::fields());
         const std::vector<double> zero(soft_.elements(), 0.0);
         for (const HydraulicOscillator& tool : tools) wave_.check(tool, zero, 0.0, {}, o.bit_reflection);

@@ -47,7 +47,9 @@
 #include <cmath>
 #include <complex>
 #include <cstddef>
+#include <functional>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -83,9 +85,18 @@ struct OscillatorResponseParams {
     double stick_speed = 1e-4;              ///< m/s: where a contact is caught to stick (wall_contact.hpp)
     double steady_tolerance = 0.02;         ///< settled: two windows' amplitudes agree within this share of the largest
     double max_time = 30.0;                 ///< s: the longest run while waiting for it to settle
+    /// Polled between integrator steps (SolverOptions::interrupt): true stops the run (Interrupted). Python's Ctrl-C.
+    std::function<bool()> interrupt;
 
     static constexpr std::size_t samples_per_cycle = 64;
     static constexpr std::size_t min_elements = 10;
+    /// The most work one dynamic run may take: elements x cycles simulated (node-cycles). Measured: 350 node-cycles
+    /// per second (4.85 km at 18 and 28 Hz, 270 and 420 elements, ~75 integrator steps and 20 stick-slip switches
+    /// per node-cycle; the -O1 development build on a loaded 2-core machine), so 1e7 is hours. A 10 km string at
+    /// 30 Hz with the defaults (940 elements, at most 30 s) needs 8.5e5, the heaviest case of the tests (300 s at
+    /// 100 elements per wavelength) 2.4e5; a tool at 1e4 Hz on 3 km needs ~2e9 (months), at 1e6 Hz its 9e6
+    /// elements alone would not fit in memory.
+    static constexpr double max_node_cycles = 1e7;
     static constexpr std::array<Field<OscillatorResponseParams>, 8> fields();
 };
 
@@ -197,11 +208,9 @@ public:
     const DrillString& string() const { return string_; }
     double mean_wave_speed() const { return mean_speed_; }  ///< c = L / (travel time), m/s
 
-    /// The dynamic model's element count for a tool of frequency f [Hz].
+    /// The dynamic model's element count for a tool of frequency f [Hz] (check() has bounded it).
     std::size_t elements_for(double frequency, const OscillatorResponseParams& o) const {
-        const double wavelength = min_speed_ / frequency;
-        const double n = std::ceil(o.elements_per_wavelength * string_.length() / wavelength);
-        return std::max<std::size_t>(OscillatorResponseParams::min_elements, static_cast<std::size_t>(n));
+        return static_cast<std::size_t>(elements_count(frequency, o));
     }
 
     /// Checks the operation and the settings, naming the parameter.
@@ -225,6 +234,24 @@ public:
                            o.cycles);
         if (!std::isnan(o.transient) && !(o.transient <= 600.0))
             detail::reject("OscillatorResponseParams", "transient", "at most 600 s", o.transient);
+        const double work = node_cycles(tool.frequency, o);
+        if (!(work <= OscillatorResponseParams::max_node_cycles)) {
+            std::ostringstream rule;
+            rule.precision(3);
+            rule << "low enough for the dynamic run's work, elements x cycles simulated, to stay within "
+                 << OscillatorResponseParams::max_node_cycles << " (hours on one core): here "
+                 << work << " (" << elements_count(tool.frequency, o) << " elements over " << longest_time(tool.frequency, o)
+                 << " s at " << tool.frequency << " Hz); lower the frequency, elements_per_wavelength, max_time or "
+                 << "transient, or use vibration='wave'";
+            detail::reject("HydraulicOscillator", "frequency", rule.str().c_str(), tool.frequency);
+        }
+    }
+
+    /// The dynamic run's work [node-cycles] for a tool of frequency f: elements x the longest simulated time x f
+    /// (a fixed transient and one window; else the longer of max_time and the default transient's cap, and a
+    /// window). Estimated before anything is allocated (check()).
+    double node_cycles(double frequency, const OscillatorResponseParams& o) const {
+        return elements_count(frequency, o) * longest_time(frequency, o) * frequency;
     }
 
     /// The rig of operation `op` with tool `tool` on `elements` elements (what response() runs). `start`: per
@@ -335,6 +362,7 @@ public:
         so.rtol = o.rtol;
         so.atol = 1e-9;
         so.max_events_in_window = 1000000;
+        so.interrupt = o.interrupt;
         FirstHarmonic harmonic(r, 2.0 * pi * tool.frequency, -kin.direction);
         std::vector<double> wall(m + 1, 0.0);  // mu_i N_i per node: the contacts' kinetic friction
         for (std::size_t c = 0; c < r.contact_nodes().size(); ++c)
@@ -368,6 +396,19 @@ public:
     }
 
 private:
+    /// elements_for as a double (no cast of a huge count): at least min_elements, n_lambda per wavelength c / f.
+    double elements_count(double frequency, const OscillatorResponseParams& o) const {
+        const double n = std::ceil(o.elements_per_wavelength * string_.length() * frequency / min_speed_);
+        return std::max(static_cast<double>(OscillatorResponseParams::min_elements), n);
+    }
+    /// The longest time response() simulates [s]: a fixed transient and one window; else the default transient
+    /// (its reach at most the string's length) or max_time, whichever is longer, and one window.
+    double longest_time(double frequency, const OscillatorResponseParams& o) const {
+        const double window = std::floor(o.cycles) / frequency;
+        if (!std::isnan(o.transient)) return o.transient + window;
+        return std::max(default_transient(string_.length(), frequency, o), o.max_time) + window;
+    }
+
     /// The first harmonic of every node's axial speed over whole cycles: v = V + Im(A e^{i omega t}) gives
     /// A = 2 i <v e^{-i omega t}>; and the slowest speed along the motion (v times the direction, down +1).
     struct FirstHarmonic {
@@ -446,6 +487,8 @@ private:
             stats.restarts += done.stats.restarts;
             stats.events = h.events;
             t = t_end;
+        } catch (const Interrupted&) {
+            throw;  // the caller's stop (Ctrl-C), not a failure of the run
         } catch (const SimulationError& e) {
             throw SimulationError("OscillatorResponse: the dynamic run of the tool at " +
                                       std::to_string(tool.measured_depth) + " m (" + std::to_string(tool.frequency) +

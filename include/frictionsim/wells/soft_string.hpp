@@ -181,8 +181,12 @@ inline constexpr std::array<Field<SoftStringParams>, 11> SoftStringParams::field
          "Axial speed while drilling."},
         {"rotary_speed", "omega", "rad/s", Rule::positive(), &P::rotary_speed,
          "Rotary speed of the rotating operations."},
-        {"weight_on_bit", "WOB", "N", Rule::non_negative(), &P::weight_on_bit, "Weight on bit while drilling."},
-        {"bit_torque", "TOB", "N m", Rule::non_negative(), &P::bit_torque, "Torque on bit, rotary drilling."},
+        // bounded far above any rig (hook capacities ~1e7 N, bit torques ~1e5 N m): a typo of 1e300 would
+        // overflow the tension's square in the side force and read as a friction lock-up
+        {"weight_on_bit", "WOB", "N", Rule::interval(0.0, 1e9).because("1e9 N is 100 times the largest hook load"),
+         &P::weight_on_bit, "Weight on bit while drilling."},
+        {"bit_torque", "TOB", "N m", Rule::interval(0.0, 1e9).because("1e9 N m is 10^4 times a bit's torque"),
+         &P::bit_torque, "Torque on bit, rotary drilling."},
     }};
 }
 
