@@ -438,3 +438,18 @@ TEST_CASE("oscillator drag: bad input is refused naming it", "[oscillator][valid
     CHECK(rejected_parameter([&] { (void)wave.amplitude({1000.0, 5e4, 18.0}, wall, 0.0, {}, -1.01); }) ==
           "bit_reflection");
 }
+
+TEST_CASE("oscillator drag: a hook load that no weight on bit within its limit reaches is named", "[oscillator][validation]") {
+    // issue 23: a huge negative hook load doubled the weight on bit of the search until the tension overflowed,
+    // and the error blamed open_hole_friction. The search stops at the weight on bit's own limit (1e9 N).
+    const DrillString string({pipe(3000.0)});
+    const Survey survey({{0.0, 0.0, 0.0}, {3500.0, 1.2, 0.0}});
+    const OscillatorDrag model(survey, string, 300);
+    const SoftStringParams p;
+    for (const double hook_load : {-1e300, -1e12})
+        CHECK(rejected_parameter([&] { (void)model.weight_on_bit_at(hook_load, p, {}); }) == "hook_load");
+    SoftStringParams wob = p;
+    wob.weight_on_bit = 8e8;  // within the limit: the search finds it again
+    const double reached = model.soft_string().run(Operation::sliding_drilling, wob).hook_load();
+    CHECK(model.weight_on_bit_at(reached, p, {}) == Approx(8e8).epsilon(1e-9));
+}

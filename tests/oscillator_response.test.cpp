@@ -208,3 +208,68 @@ TEST_CASE("oscillator response: bad input is refused naming it", "[oscillator][d
     dynamic.source = VibrationSource::dynamic;
     CHECK(rejected_parameter([&] { (void)drag.run(Operation::reaming, p, {tool}, dynamic); }) == "vibration");
 }
+
+TEST_CASE("oscillator response: the work is estimated before anything is allocated, and refused past the limit",
+          "[oscillator][dynamic][validation]") {
+    // issue 23: a tool at 1e4 Hz ran past 60 s, at 1e6 Hz it allocated until std::bad_alloc. The estimate is
+    // elements x simulated time x frequency: with a fixed transient, (transient + cycles / f) exactly.
+    const double length = 1000.0;
+    const PipeSection dp = pipe(length);
+    const OscillatorResponseModel model(horizontal(length), DrillString({dp}));
+    const double c = std::sqrt(dp.youngs_modulus / dp.density);
+    OscillatorResponseParams o;
+    o.transient = 2.0;
+    const double f = 18.0, m = std::ceil(o.elements_per_wavelength * length * f / c);
+    CHECK(static_cast<double>(model.elements_for(f, o)) == m);
+    CHECK(model.node_cycles(f, o) == Approx(m * (2.0 + 8.0 / f) * f).epsilon(1e-15));
+    // the default transient: at most the longer of max_time and the default's cap, and one window
+    o.transient = std::nan("");
+    CHECK(model.node_cycles(f, o) ==
+          Approx(m * (std::max(o.max_time, model.default_transient(length, f, o)) + 8.0 / f) * f).epsilon(1e-15));
+    const SoftStringParams p;
+    for (const double frequency : {1e4, 1e6, 1e300}) {
+        const HydraulicOscillator tool{500.0, 2e4, frequency};
+        CHECK(rejected_parameter([&] { (void)model.response(Operation::sliding_drilling, p, tool, o); }) ==
+              "frequency");
+        CHECK(model.node_cycles(frequency, o) > OscillatorResponseParams::max_node_cycles);
+    }
+    CHECK(rejection_message([&] { (void)model.response(Operation::sliding_drilling, p, {500.0, 2e4, 1e4}, o); })
+              .find("to stay within 1e+07") != std::string::npos);
+    // two tools, each within the limit, together beyond it: the sum is named at tools
+    o.max_time = 600.0;
+    const double each = std::sqrt(0.6 * OscillatorResponseParams::max_node_cycles / (600.0 * 16.0 * length / c));
+    REQUIRE(model.node_cycles(each, o) < OscillatorResponseParams::max_node_cycles);
+    REQUIRE(2.0 * model.node_cycles(each, o) > OscillatorResponseParams::max_node_cycles);
+    const OscillatorDrag drag(horizontal(length), DrillString({dp}), 100);
+    OscillatorDragParams dynamic;
+    dynamic.source = VibrationSource::dynamic;
+    dynamic.dynamic = o;
+    CHECK(rejected_parameter([&] {
+              (void)drag.run(Operation::sliding_drilling, p, {{300.0, 2e4, each}, {600.0, 2e4, each}}, dynamic);
+          }) == "tools");
+}
+
+TEST_CASE("oscillator response: the interrupt callback stops the dynamic run as Interrupted",
+          "[oscillator][dynamic]") {
+    // issue 23: Ctrl-C did not stop the dynamic vibration; the run polls OscillatorResponseParams::interrupt
+    // between steps (at most every 20 ms) and the Interrupted passes unchanged (not rewrapped as a failed run)
+    const double length = 500.0;
+    const OscillatorResponseModel model(horizontal(length), DrillString({pipe(length)}));
+    OscillatorResponseParams o;
+    o.transient = 60.0;  // minutes of computing: only the interrupt ends it
+    int polls = 0;
+    o.interrupt = [&] { return ++polls >= 3; };
+    SoftStringParams p;
+    p.open_hole_friction = p.cased_hole_friction = 0.2;
+    const HydraulicOscillator tool{250.0, 20e3, 18.0};
+    CHECK_THROWS_AS(model.response(Operation::sliding_drilling, p, tool, o), Interrupted);
+    CHECK(polls == 3);
+    OscillatorDragParams dynamic;
+    dynamic.source = VibrationSource::dynamic;
+    dynamic.dynamic = o;
+    polls = 0;
+    const OscillatorDrag drag(horizontal(length), DrillString({pipe(length)}), 50);
+    CHECK_THROWS_AS(drag.run(Operation::sliding_drilling, p, {tool}, dynamic), Interrupted);
+    polls = 0;
+    CHECK_THROWS_AS(drag.weight_on_bit_at(1e4, p, {tool}, dynamic), Interrupted);
+}

@@ -790,3 +790,25 @@ TEST_CASE("soft string: a friction factor that locks the string up is named, nev
         CHECK_NOTHROW(string.run(Operation::trip_in, open_hole(0.4)));
     }
 }
+
+TEST_CASE("soft string: a bit load beyond any rig is named, not read as a friction lock-up",
+          "[soft_string][validation]") {
+    // issue 23: weight_on_bit = 1e300 overflowed the tension's square in the side force, and the run blamed
+    // open_hole_friction (a lock-up). The table bounds both bit loads at 1e9 (N, N m).
+    const Survey survey({{0.0, 0.0, 0.0}, {1000.0, 0.5, 0.0}});
+    const SoftString string(survey, DrillString({pipe(900.0)}), 90);
+    for (const double load : {1e300, 1.0000001e9, std::numeric_limits<double>::infinity()}) {
+        SoftStringParams p;
+        p.weight_on_bit = load;
+        CHECK(rejected_parameter([&] { (void)string.run(Operation::sliding_drilling, p); }) == "weight_on_bit");
+        p.weight_on_bit = 0.0;
+        p.bit_torque = load;
+        CHECK(rejected_parameter([&] { (void)string.run(Operation::rotary_drilling, p); }) == "bit_torque");
+    }
+    SoftStringParams most;
+    most.weight_on_bit = most.bit_torque = 1e9;  // the limit itself runs: finite, the bit's load at the bit
+    const TorqueDragResult r = string.run(Operation::rotary_drilling, most);
+    CHECK(r.tension.back() == -1e9);
+    CHECK(r.torque.back() == 1e9);
+    CHECK(std::isfinite(r.hook_load()));
+}

@@ -232,3 +232,23 @@ TEST_CASE("survey: inclination along the string, linear on a course in a vertica
     CHECK(kick.inclination_at(250.0) == Approx(kick.at(250.0).inclination).margin(1e-14));
     CHECK(kick.inclination_at(250.0) == 0.5 * pi / 6.0);
 }
+
+TEST_CASE("survey: the stations' table holds the rules Survey checks", "[survey][validation]") {
+    // SurveyStation::fields() is what Python reads as Survey.parameters (and the property tests draw from); the
+    // constructor takes its inclination bounds from it, in degrees exactly [0, 180]
+    constexpr auto fields = SurveyStation::fields();
+    CHECK(std::string(fields[1].name) == "inclination");
+    CHECK(fields[1].rule.lower == 0.0);
+    CHECK(fields[1].rule.upper == pi);
+    CHECK_NOTHROW(Survey({{0.0, 0.0, 0.0}, {100.0, pi / 2, 0.0}, {200.0, pi, 0.0}}));
+    CHECK_NOTHROW(Survey::from_degrees({{0.0, 0.0, 0.0}, {100.0, 90.0, 0.0}, {200.0, 180.0, 0.0}}));
+    CHECK(rejected_parameter([] { (void)Survey({{0.0, 0.0, 0.0}, {100.0, std::nextafter(pi, 4.0), 0.0}}); }) ==
+          "inclination");
+    CHECK(rejected_parameter([] { (void)Survey::from_degrees({{0.0, 0.0, 0.0}, {100.0, 180.00000000000003, 0.0}}); }) ==
+          "inclination");
+    for (const auto& f : fields) {  // every field refuses a non-finite value
+        SurveyStation bad{100.0, 0.1, 0.0};
+        bad.*(f.member) = std::numeric_limits<double>::quiet_NaN();
+        CHECK(rejected_parameter([&] { (void)Survey({{0.0, 0.0, 0.0}, bad}); }) == f.name);
+    }
+}
