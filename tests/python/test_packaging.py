@@ -16,6 +16,7 @@ import glob
 import importlib.metadata
 import math
 import os
+import platform
 import re
 import shutil
 import subprocess
@@ -189,3 +190,76 @@ def test_emd_without_pyemd_names_the_extra(monkeypatch):
     assert caught.value.name == "PyEMD"
     # the rest of frictionsim.signal needs no PyEMD
     assert signal.dominant_frequency(t, np.sin(2 * np.pi * 5 * t)) == pytest.approx(5.0, rel=1e-3)
+
+
+def _installed_wheel_tags():
+    try:
+        wheel = importlib.metadata.distribution("frictionsim").read_text("WHEEL")
+    except importlib.metadata.PackageNotFoundError:
+        return None
+    return [line.split(":", 1)[1].strip() for line in (wheel or "").splitlines() if line.startswith("Tag:")]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="manylinux wheels are Linux wheels")
+def test_installed_wheel_is_the_repaired_manylinux_wheel():
+    """scripts/test installs the wheel that auditwheel repaired (scripts/wheel's): its tags are this interpreter's
+    and manylinux, never the bare linux_* of pip wheel's own output."""
+    tags = _installed_wheel_tags()
+    if tags is None:
+        pytest.skip("frictionsim is not installed from a wheel here (a development checkout on the path)")
+    here = f"cp{sys.version_info.major}{sys.version_info.minor}"
+    assert tags, "the installed WHEEL file has no Tag lines"
+    for tag in tags:
+        python_tag, abi_tag, platform_tag = tag.split("-")
+        assert (python_tag, abi_tag) == (here, here), tag
+        assert re.fullmatch(rf"manylinux(_\d+_\d+|1|2010|2014)_{re.escape(platform.machine())}", platform_tag), tag
+
+
+def _tarball(path: Path, files: dict) -> Path:
+    import io
+    import tarfile
+
+    with tarfile.open(path, "w:gz") as archive:
+        for name, text in files.items():
+            data = text.encode()
+            info = tarfile.TarInfo(f"frictionsim-0.1.0/{name}")
+            info.size = len(data)
+            archive.addfile(info, io.BytesIO(data))
+    return path
+
+
+def _sdist_check(*args) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(ROOT / "scripts" / "lib" / "sdist_check.py"), *map(str, args)],
+                          capture_output=True, text=True)
+
+
+@needs_source
+def test_sdist_check_refuses_build_files_and_missing_sources(tmp_path):
+    """scripts/lib/sdist_check.py, which scripts/test runs on the sdist it builds the wheel from: the top-level
+    files a build reads are required, every tracked file of cmake/ include/ bindings/ python/ too, and nothing of a
+    build may be packed (build dirs, out/, .venv, objects, extensions, bytecode)."""
+    good = {name: "x" for name in ("pyproject.toml", "CMakeLists.txt", "LICENSE", "README.md", "PKG-INFO",
+                                   "bindings/module.cpp", "include/frictionsim/a.hpp")}
+    assert _sdist_check(_tarball(tmp_path / "good.tar.gz", good)).returncode == 0
+    for extra in ("build/x.o", "build-py/bindings/y.txt", "out/wheel/frictionsim.whl", ".venv/bin/python",
+                  "python/frictionsim/__pycache__/a.cpython-311.pyc", "python/frictionsim/_core.so"):
+        checked = _sdist_check(_tarball(tmp_path / "bad.tar.gz", {**good, extra: "x"}))
+        assert checked.returncode == 1 and f"a build's file: {extra}" in checked.stderr, (extra, checked.stderr)
+    missing = dict(good)
+    del missing["pyproject.toml"]
+    checked = _sdist_check(_tarball(tmp_path / "missing.tar.gz", missing))
+    assert checked.returncode == 1 and "missing pyproject.toml" in checked.stderr
+
+    if shutil.which("git") is None:
+        return
+    # A source tree whose tracked header the sdist lacks.
+    tree = tmp_path / "tree"
+    (tree / "include" / "frictionsim").mkdir(parents=True)
+    (tree / "include" / "frictionsim" / "a.hpp").write_text("x")
+    (tree / "include" / "frictionsim" / "b.hpp").write_text("x")
+    subprocess.run(["git", "init", "-q", str(tree)], check=True)
+    subprocess.run(["git", "-C", str(tree), "add", "include"], check=True)
+    checked = _sdist_check(_tarball(tmp_path / "good.tar.gz", good), tree)
+    assert checked.returncode == 1, checked.stderr
+    assert "missing include/frictionsim/b.hpp (tracked, read by the build)" in checked.stderr
+    assert "a.hpp" not in checked.stderr.split("error:", 1)[1]
