@@ -104,6 +104,41 @@ py::object friction_law_to_python(const FrictionLaw& law) {
     return std::visit([](const auto& l) { return py::cast(l); }, law);
 }
 
+namespace {
+
+/// Every field of a Parameter, in declaration order: its pickled state, equality and hash.
+py::tuple parameter_state(const ParameterInfo& p) {
+    return py::make_tuple(p.name, p.field, p.symbol, p.unit, p.rule, p.doc, p.lower, p.upper, p.lower_open,
+                          p.upper_open, p.unset_allowed, p.required, p.at_least, p.default_value, p.example);
+}
+
+/// The state as equality and hashing see it: an unset example (NaN, which equals nothing) as None.
+py::tuple compared(const ParameterInfo& p) {
+    py::list fields(parameter_state(p));
+    if (std::isnan(p.example)) fields[fields.size() - 1] = py::none();
+    return py::tuple(fields);
+}
+
+ParameterInfo parameter_from_state(const py::tuple& state) {
+    constexpr std::size_t fields = 15;
+    if (state.size() != fields)
+        throw InvalidParameter("state", "Parameter.__setstate__: state must be the " + std::to_string(fields) +
+                                            " fields a pickled Parameter holds, got " + std::to_string(state.size()));
+    try {
+        return ParameterInfo{state[0].cast<std::string>(), state[1].cast<std::string>(), state[2].cast<std::string>(),
+                             state[3].cast<std::string>(), state[4].cast<std::string>(), state[5].cast<std::string>(),
+                             state[6].cast<double>(), state[7].cast<double>(), state[8].cast<bool>(),
+                             state[9].cast<bool>(), state[10].cast<bool>(), state[11].cast<bool>(),
+                             state[12].cast<std::optional<std::string>>(), state[13].cast<std::optional<double>>(),
+                             state[14].cast<double>()};
+    } catch (const py::cast_error&) {
+        throw InvalidParameter("state", "Parameter.__setstate__: state must hold a pickled Parameter's fields (str, "
+                                        "float and bool in their order); a field has another type");
+    }
+}
+
+}  // namespace
+
 void register_laws(py::module_& m) {
     py::class_<ParameterInfo>(m, "Parameter", R"doc(
 One parameter of a law or rig, as its C++ parameter table describes it (Law.parameters holds one per keyword).
@@ -131,7 +166,15 @@ for a required keyword.
         .def("__repr__", [](const ParameterInfo& p) {
             return "Parameter(name='" + p.name + "', symbol='" + p.symbol + "', unit='" + p.unit + "', rule='" +
                    p.rule + "', default=" + (p.default_value ? format_double(*p.default_value) : "None") + ")";
-        });
+        })
+        .def("__eq__", [](const ParameterInfo& a, const py::object& other) -> py::object {
+            if (!py::isinstance<ParameterInfo>(other)) return py::reinterpret_borrow<py::object>(Py_NotImplemented);
+            return py::bool_(compared(a).equal(compared(other.cast<const ParameterInfo&>())));
+        })
+        .def("__hash__", [](const ParameterInfo& p) { return py::hash(compared(p)); })
+        // A law's parameters cross a process pool with it: pickled as their fields, rebuilt by __setstate__ (no
+        // constructor: a Parameter comes from a parameter table).
+        .def(py::pickle([](const ParameterInfo& p) { return parameter_state(p); }, &parameter_from_state));
 
     py::list laws;
     for_each_type(EngineLaws{}, [&](auto tag) {

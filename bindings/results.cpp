@@ -4,6 +4,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -19,7 +20,11 @@ namespace {
 
 template <class T>
 py::array_t<T> to_array(const std::vector<T>& v) {
-    return py::array_t<T>(static_cast<py::ssize_t>(v.size()), v.data());
+    // allocated, then filled: pybind11's array_t(size, data) does not check the copy it makes, and out of memory it
+    // returned a null array that reshape dereferenced (a segfault); this raises MemoryError instead
+    py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+    if (!v.empty()) std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
 }
 
 py::object python_error(const char* name) { return py::module_::import("frictionsim.errors").attr(name); }
@@ -34,7 +39,13 @@ struct EventLog {
 /// The run up to the failure as a frictionsim.Result (so frictionsim.errors needs nothing of the package).
 py::object partial_result(const SimulationError& e) {
     if (!e.partial()) return py::none();
-    return py::module_::import("frictionsim.result").attr("Result")(std::const_pointer_cast<Result>(e.partial()));
+    try {
+        return py::module_::import("frictionsim.result").attr("Result")(std::const_pointer_cast<Result>(e.partial()));
+    } catch (py::error_already_set& copy) {
+        // out of memory copying it into NumPy (a run stopped by memory): the error, without its partial result
+        if (!copy.matches(PyExc_MemoryError)) throw;
+        return py::none();
+    }
 }
 
 }  // namespace
@@ -66,6 +77,12 @@ void register_errors(py::module_&) {
         } catch (const InvalidParameter& e) {
             const py::object type = python_error("InvalidParameterError");
             raise(type, type(e.what(), e.parameter()));
+        } catch (const py::reference_cast_error&) {
+            // pybind11 found no C++ value behind an instance it was to pass by reference: one made by __new__ (or an
+            // incomplete pickle) and never constructed, or None where an object is required
+            PyErr_SetString(PyExc_TypeError,
+                            "an argument (or self) was never constructed (made by its class's __new__ or an "
+                            "incomplete pickle) or is None: build it with its class(...)");
         }
     });
 }
@@ -163,6 +180,10 @@ void register_results(py::module_& m) {
         .def_readwrite("event_window", &SolverOptions::event_window)
         .def_readwrite("timeout", &SolverOptions::timeout)
         .def_readwrite("max_output_rows", &SolverOptions::max_output_rows)
+        .def_readwrite("max_output_bytes", &SolverOptions::max_output_bytes)
+        .def_property_readonly("output_byte_budget", &SolverOptions::output_byte_budget,
+                               "The byte budget in force [bytes]: max_output_bytes, or (0) an eighth of the "
+                               "machine's physical memory.")
         .def_readwrite("step", &SolverOptions::step)
         .def_readwrite("theta", &SolverOptions::theta)
         .def_readwrite("projection_band", &SolverOptions::projection_band)

@@ -17,7 +17,15 @@ class Parameter:
     closed ends, or at least another parameter (at_least); unset_allowed: None means "not given"; default is None
     for a required keyword.
     """
-    def __repr__(self) -> typing.Any:
+    def __eq__(self, arg0: typing.Any) -> typing.Any:
+        ...
+    def __getstate__(self) -> tuple:
+        ...
+    def __hash__(self) -> int:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
         ...
     @property
     def at_least(self) -> str | None:
@@ -92,7 +100,7 @@ class Coulomb:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def mu(self) -> float:
@@ -137,7 +145,7 @@ class Stribeck:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def slip_force(self, v_r: typing.SupportsFloat | typing.SupportsIndex, normal_force: typing.SupportsFloat | typing.SupportsIndex, direction: typing.SupportsInt | typing.SupportsIndex) -> float:
         """
@@ -203,7 +211,7 @@ class Dahl:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def exponent(self) -> float:
@@ -256,7 +264,7 @@ class LuGre:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def stribeck_level(self, v_r: typing.SupportsFloat | typing.SupportsIndex, normal_force: typing.SupportsFloat | typing.SupportsIndex) -> float:
         """
@@ -338,7 +346,7 @@ class ElastoPlastic:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def breakaway_deflection(self, normal_force: typing.SupportsFloat | typing.SupportsIndex) -> float:
         """
@@ -454,7 +462,7 @@ class GeneralizedMaxwellSlip:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def attraction(self) -> float:
@@ -583,7 +591,7 @@ class Leuven:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def attraction_exponent(self) -> float:
@@ -668,7 +676,7 @@ class PowerLawCoefficient:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def coefficient(self, vibration_velocity_amplitude: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], sliding_velocity: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
@@ -731,7 +739,7 @@ class CallableLaw:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def force(self) -> typing.Any:
@@ -808,7 +816,7 @@ class Method:
     @typing.overload
     def __ne__(self, other: typing.Any) -> bool:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -861,7 +869,7 @@ class LinearSolver:
     @typing.overload
     def __ne__(self, other: typing.Any) -> bool:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -908,7 +916,7 @@ class ContactSolver:
     @typing.overload
     def __ne__(self, other: typing.Any) -> bool:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def __setstate__(self, state: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
@@ -934,7 +942,7 @@ class StopCondition:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def direction(self) -> int:
@@ -961,12 +969,15 @@ class SolverOptions:
     record_event_rows: bool
     record_event_states: bool | None
     record_steps: bool
+    @staticmethod
+    def __repr__(*args, **kwargs):
+        """
+        Return repr(self).
+        """
     def __init__(self, **kwargs) -> None:
         """
         SolverOptions(**options): the engine's defaults, any option (an attribute) set by keyword.
         """
-    def __repr__(self) -> typing.Any:
-        ...
     def validate(self, state_size: typing.SupportsInt | typing.SupportsIndex = 1) -> None:
         """
         Raises InvalidParameterError naming the first option that breaks its rule (what simulate() checks when the run starts).
@@ -1010,6 +1021,12 @@ class SolverOptions:
     def max_events_in_window(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
     @property
+    def max_output_bytes(self) -> int:
+        ...
+    @max_output_bytes.setter
+    def max_output_bytes(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+    @property
     def max_output_rows(self) -> int:
         ...
     @max_output_rows.setter
@@ -1027,6 +1044,11 @@ class SolverOptions:
     @max_steps.setter
     def max_steps(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
         ...
+    @property
+    def output_byte_budget(self) -> int:
+        """
+        The byte budget in force [bytes]: max_output_bytes, or (0) an eighth of the machine's physical memory.
+        """
     @property
     def output_times(self) -> list[float]:
         ...
@@ -1073,7 +1095,7 @@ class Event:
     """
     One switch of the hybrid system (a stick-slip transition, a velocity reversal).
     """
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def direction(self) -> int:
@@ -1122,9 +1144,12 @@ class EventLog:
     """
     A run's event log, read out of the engine's result on demand.
     """
+    @staticmethod
+    def __repr__(*args, **kwargs):
+        """
+        Return repr(self).
+        """
     def __len__(self) -> int:
-        ...
-    def __repr__(self) -> typing.Any:
         ...
     @property
     def rows(self) -> list:
@@ -1135,8 +1160,11 @@ class RawResult:
     """
     What the C++ engine recorded (see frictionsim.Result).
     """
-    def __repr__(self) -> typing.Any:
-        ...
+    @staticmethod
+    def __repr__(*args, **kwargs):
+        """
+        Return repr(self).
+        """
     def take_event_log(self) -> EventLog:
         """
         Move the event log out (events is empty afterwards): frictionsim.Result keeps it, not the columns.
@@ -1187,9 +1215,12 @@ class HydraulicOscillatorParams:
     """
     Geometry and materials of paper 000 eqs 1-4, SI units.
     """
+    @staticmethod
+    def __repr__(*args, **kwargs):
+        """
+        Return repr(self).
+        """
     def __init__(self, *, tool_outer_radius: typing.SupportsFloat | typing.SupportsIndex, tool_inner_radius: typing.SupportsFloat | typing.SupportsIndex, wellbore_radius: typing.SupportsFloat | typing.SupportsIndex, steel_density: typing.SupportsFloat | typing.SupportsIndex, mud_density: typing.SupportsFloat | typing.SupportsIndex, rock_youngs_modulus: typing.SupportsFloat | typing.SupportsIndex, rock_poisson_ratio: typing.SupportsFloat | typing.SupportsIndex, steel_youngs_modulus: typing.SupportsFloat | typing.SupportsIndex, steel_poisson_ratio: typing.SupportsFloat | typing.SupportsIndex, rock_wear_width: typing.SupportsFloat | typing.SupportsIndex, specimen_width: typing.SupportsFloat | typing.SupportsIndex, gravity: typing.SupportsFloat | typing.SupportsIndex = 9.81) -> None:
-        ...
-    def __repr__(self) -> typing.Any:
         ...
     @property
     def gravity(self) -> float:
@@ -1275,7 +1306,7 @@ class AxialVibrationRig:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -1379,7 +1410,7 @@ class KinematicRig:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -1442,7 +1473,7 @@ class HystereticFriction:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _branch_torque(self, arg0: typing.Annotated[numpy.typing.ArrayLike, numpy.bool], arg1: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg2: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], arg3: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         ...
@@ -1554,7 +1585,7 @@ class TorsionalRig:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -1707,7 +1738,7 @@ class PipeSection:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def area(self) -> float:
@@ -1785,7 +1816,7 @@ class DrillString:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def lump(self, elements: typing.SupportsInt | typing.SupportsIndex) -> dict:
         """
@@ -1837,7 +1868,7 @@ class NavarroLopezBit:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def coefficient(self, angular_speed: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
@@ -1938,7 +1969,7 @@ class DetournayBit:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def depth_at_weight(self, weight_on_bit: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
         """
@@ -2120,7 +2151,7 @@ class StringRig:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, t_end: typing.SupportsFloat | typing.SupportsIndex, options: SolverOptions, t_start: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -2389,7 +2420,7 @@ class NavarroLopez2Dof:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -2569,7 +2600,7 @@ class NavarroLopez4Dof:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, arg0: typing.SupportsFloat | typing.SupportsIndex, arg1: SolverOptions, arg2: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -2806,7 +2837,7 @@ class TorsionalString:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def _simulate(self, t_end: typing.SupportsFloat | typing.SupportsIndex, options: SolverOptions, t_start: typing.SupportsFloat | typing.SupportsIndex) -> RawResult:
         ...
@@ -3031,6 +3062,7 @@ class Survey:
     A bad survey (fewer than two stations, NaN, depth not increasing, inclination outside 0..180 degrees, a course that
     reverses the direction) raises InvalidParameterError (a ValueError) naming the station and the field.
     """
+    parameters: typing.ClassVar[tuple]
     @staticmethod
     def from_degrees(measured_depth: numpy.typing.ArrayLike, inclination: numpy.typing.ArrayLike, azimuth: numpy.typing.ArrayLike) -> Survey:
         """
@@ -3044,7 +3076,7 @@ class Survey:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def interpolate(self, measured_depth: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> dict:
         """
@@ -3096,8 +3128,13 @@ class TorqueDragResult:
     tension (effective, compression < 0) [N], torque [N m], the Dawson-Paslay sinusoidal and Chen-Lin-Cheatham helical
     buckling loads [N] and the flags where the compression exceeds them; per element (N) side_force [N] and
     side_force_per_length [N/m]. hook_load [N] (less the block weight) and surface_torque [N m] are node 0's.
+    Built by SoftString.run; TorqueDragResult(**fields) rebuilds one from its fields (pickling).
     """
-    def __repr__(self) -> typing.Any:
+    def __init__(self, **kwargs) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> str:
         ...
     @property
     def helical_buckling_load(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -3166,8 +3203,13 @@ class OscillatorResponse:
     (v ~ V + first_harmonic sin(omega t + phase)), reversed (share of the cycle sliding against the operation),
     friction_factor (the wall's cycle-mean friction over mu N, from each node's mean balance) and amplitude [m/s]
     (what the friction sees: the first harmonic, at most the amplitude of the sinusoid with that mean friction).
+    Built by SoftString.oscillator_response; OscillatorResponse(**fields) rebuilds one from its fields (pickling).
     """
-    def __repr__(self) -> typing.Any:
+    def __init__(self, **kwargs) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> str:
         ...
     @property
     def amplitude(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -3208,6 +3250,11 @@ class OscillatorResponse:
     def phase(self) -> numpy.typing.NDArray[numpy.float64]:
         """
         Per node, its phase [rad] (v ~ V + a sin(omega t + phase)).
+        """
+    @property
+    def phasor(self) -> numpy.ndarray[typing.Any, numpy.dtype[typing.Any]]:
+        """
+        Per node, the first harmonic as a complex amplitude [m/s]: first_harmonic * exp(1j * phase).
         """
     @property
     def reach(self) -> float:
@@ -3252,7 +3299,7 @@ class HydraulicOscillator:
         ...
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     @property
     def force_amplitude(self) -> float:
@@ -3271,9 +3318,13 @@ class HydraulicOscillator:
         """
 class OscillatorDragResult:
     """
-    One operation with and without the tools: the plain and vibrated torque and drag, per element the vibration amplitude and friction factors, the zone of influence and the changes at the surface.
+    One operation with and without the tools: the plain and vibrated torque and drag, per element the vibration amplitude and friction factors, the zone of influence and the changes at the surface. Built by SoftString.oscillators; OscillatorDragResult(**fields) rebuilds one from its fields (pickling).
     """
-    def __repr__(self) -> typing.Any:
+    def __init__(self, **kwargs) -> None:
+        ...
+    def __reduce__(self) -> tuple:
+        ...
+    def __repr__(self) -> str:
         ...
     @property
     def axial_factor(self) -> numpy.typing.NDArray[numpy.float64]:
@@ -3389,9 +3440,9 @@ class SoftString:
     rotary_speed : float = 12.566370614359172
         omega [rad/s], positive and finite: Rotary speed of the rotating operations.
     weight_on_bit : float = 0
-        WOB [N], non-negative and finite: Weight on bit while drilling.
+        WOB [N], in [0, 1000000000] (1e9 N is 100 times the largest hook load): Weight on bit while drilling.
     bit_torque : float = 0
-        TOB [N m], non-negative and finite: Torque on bit, rotary drilling.
+        TOB [N m], in [0, 1000000000] (1e9 N m is 10^4 times a bit's torque): Torque on bit, rotary drilling.
     """
     methods: typing.ClassVar[tuple] = ('johancsik', 'aadnoy')
     operations: typing.ClassVar[tuple] = ('trip_in', 'trip_out', 'reaming', 'backreaming', 'rotating_off_bottom', 'sliding_drilling', 'rotary_drilling')
@@ -3402,7 +3453,7 @@ class SoftString:
         """
     def __reduce__(self) -> tuple:
         ...
-    def __repr__(self) -> typing.Any:
+    def __repr__(self) -> str:
         ...
     def element_weights(self, mud_density: typing.SupportsFloat | typing.SupportsIndex) -> numpy.typing.NDArray[numpy.float64]:
         """
@@ -3465,9 +3516,13 @@ class SoftString:
         """
         The Survey (a copy).
         """
-def _rebuild(arg0: type, arg1: tuple, arg2: dict, arg3: str) -> typing.Any:
+def _rebuild(cls: typing.Any, args: typing.Any, kwargs: typing.Any, factory: typing.Any) -> typing.Any:
     """
     Unpickling: cls(*args, **kwargs), or cls.<factory>(...), through the validating constructor.
+    """
+def _string_run_stop(flag: typing.Any) -> typing.Any:
+    """
+    Sets the object whose is_set() this thread's string runs poll beside Ctrl-C (None: none); returns the previous one.
     """
 def aarsnes_shor_well_b(collar: str = 'as_published', wave_speed: str = 'as_code', measured_depth: typing.SupportsFloat | typing.SupportsIndex = 2500.0, **kwargs) -> TorsionalString:
     """

@@ -8,7 +8,7 @@ The C++ engine's exceptions arrive as these classes (translated in bindings/resu
 * :class:`ChatteringError`: more switches than the chattering bound allows (Zeno behaviour);
   ``switching_function`` names the guard.
 * :class:`BudgetExceededError`: a budget of the run ran out (``budget`` names it: ``"timeout"``,
-  ``"max_output_rows"``); the partial result is kept like any stop.
+  ``"max_output_rows"``, ``"max_output_bytes"``); the partial result is kept like any stop.
 * :class:`AccuracyWarning`: a completed result that may be unreliable (a tolerance too loose for its error
   estimate to mean anything); ``Result.warnings`` keeps the text.
 
@@ -60,7 +60,8 @@ class ChatteringError(SimulationError):
 
 
 class BudgetExceededError(SimulationError):
-    """A budget of the run ran out; ``budget`` names the option (``"timeout"``, ``"max_output_rows"``)."""
+    """A budget of the run ran out; ``budget`` names the option (``"timeout"``, ``"max_output_rows"``,
+    ``"max_output_bytes"``)."""
 
     def __init__(self, message: str, time_reached: float, partial: Any = None, budget: str = "") -> None:
         super().__init__(message, time_reached, partial)

@@ -42,6 +42,7 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
              max_events_in_window: int = SOLVER_DEFAULTS.max_events_in_window,
              event_window: float = SOLVER_DEFAULTS.event_window, t_start: float = 0.0,
              timeout: Optional[float] = None, max_output_rows: Optional[int] = None,
+             max_output_bytes: Optional[int] = None,
              events: Optional[Sequence["_core.StopCondition"]] = None, record_events: bool = False,
              record_event_states: Optional[bool] = None, step: Optional[float] = None,
              theta: Optional[float] = None, projection_band: Optional[float] = None,
@@ -103,6 +104,12 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
     max_output_rows : int, optional
         Rows (and events) the result may hold; default the engine's (2,000,000). Past it
         :class:`BudgetExceededError` (``budget == "max_output_rows"``), so a failing run cannot fill the memory.
+    max_output_bytes : int, bytes, optional
+        Bytes the recorded rows and events may take; default an eighth of the machine's physical memory (the
+        result is copied once more into NumPy). Past it :class:`BudgetExceededError` (``budget ==
+        "max_output_bytes"``) with a consistent partial result; a run whose rows are known before it starts
+        (``output_times``, or every fixed ``step``) and would not fit is refused at once (InvalidParameterError
+        naming ``max_output_bytes``).
     events : sequence of StopCondition, optional
         Stop conditions evaluated in the engine as the run goes (SciPy's ``events``, without a Python call per
         step): ``StopCondition(state="disc_speed", level=0.0, direction=-1)`` (a state crossing a level, located
@@ -153,6 +160,8 @@ def simulate(rig: Rig, t_end: float, *, method: str = "automatic",
         options.timeout = _real("timeout", timeout)
     if max_output_rows is not None:
         options.max_output_rows = _integer("max_output_rows", max_output_rows, 1, 2**62)
+    if max_output_bytes is not None:
+        options.max_output_bytes = _integer("max_output_bytes", max_output_bytes, 1, 2**62)
     conditions = _stop_conditions(events)
     options.stop_conditions = conditions
     options.record_event_rows = _flag("record_events", record_events)
@@ -212,6 +221,7 @@ def _stop_conditions(events) -> List["_core.StopCondition"]:
         if not isinstance(condition, _core.StopCondition):
             raise InvalidParameterError("events must hold StopCondition objects (got "
                                         f"{type(condition).__name__} {condition!r:.60})", "events")
+        repr(condition)  # the construction guard: a StopCondition.__new__ without __init__ raises TypeError here
     return conditions
 
 

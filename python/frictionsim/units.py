@@ -84,8 +84,8 @@ TABLE_UNITS: Dict[str, Tuple[str, str, str]] = {
 #: Arguments that no parameter table describes (yet), with their SI units as the bindings document them:
 #: class -> routine -> argument -> unit. Everything else is read off the tables.
 _UNTABLED: Dict[str, Dict[str, Dict[str, str]]] = {
-    "Survey": {"__init__": {"measured_depth": "m", "inclination": "rad", "azimuth": "rad"},
-               "from_degrees": {"measured_depth": "m", "inclination": "deg", "azimuth": "deg"}},
+    # Survey's table (SI: m, rad) describes __init__; from_degrees takes its angles in degrees
+    "Survey": {"from_degrees": {"inclination": "deg", "azimuth": "deg"}},
     "StringRig": {"__init__": {"weight_on_bit": "N", "normal_forces": "N", "node_inclinations": "rad"}},
     "AxialVibrationRig": {"__init__": {"initial_position": "m"}},
     "KinematicRig": {"harmonic": {"sliding_velocity": "m/s", "velocity_amplitude": "m/s", "frequency": "Hz",

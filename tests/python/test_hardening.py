@@ -85,12 +85,16 @@ def test_tampered_pickles_are_rejected_by_the_constructors_rules_with_python_nam
     with pytest.raises(fs.InvalidParameterError) as info:  # C++ names (friction_coefficient) before the fix
         _core._rebuild(fs.Dahl, (-1.0, K_T, 1.0), {}, "")
     assert info.value.parameter == "mu"
-    with pytest.raises(TypeError):  # extra state entries used to be ignored
+    # the package's error since issue 23 (TypeError before), naming what of the pickle is wrong
+    with pytest.raises(fs.InvalidParameterError) as info:  # extra state entries used to be ignored
         _core._rebuild(fs.Coulomb, (0.4, 0.5, 7.0), {}, "")
-    with pytest.raises(TypeError, match="unexpected keyword"):
+    assert info.value.parameter == "args"
+    with pytest.raises(fs.InvalidParameterError, match="unexpected keyword") as info:
         _core._rebuild(fs.TorsionalRig, (fs.Coulomb(0.3),), {"disc_inertia": 0.1, "warp_drive": 1.0}, "")
-    with pytest.raises(TypeError, match="only frictionsim._core classes"):
+    assert info.value.parameter == "args"
+    with pytest.raises(fs.InvalidParameterError, match="a class of frictionsim._core") as info:
         _core._rebuild(dict, (), {}, "")
+    assert info.value.parameter == "cls"
 
 
 # ---------------------------------------------------------------------------------------------- item 2
