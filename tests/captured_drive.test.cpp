@@ -79,7 +79,7 @@ Difference rms_difference(const Result& captured, const Result& exact, const Exa
 
 }  // namespace
 
-TEST_CASE("captured drive: a rigid string spun up at the torque limit accelerates at (T_max - T_b) / J; the integral "
+TEST_CASE("captured drive: a rigid string spun up at the torque limit accelerates at (T_max - T_b) / J - the integral "
           "stays frozen", "[mixed][drive]") {
     // 100 m of pipe in 4 elements (its lowest mode ~50 rad/s, damped by beta = 5 ms), no wall friction, a constant
     // bit torque T_b against it; the PI's demand k_p omega_SP = 3e5 N m is far past T_max = 1e4 from the start, so
@@ -324,7 +324,7 @@ TEST_CASE("captured drive: bad drive inputs name the parameter", "[mixed][drive]
 }
 
 TEST_CASE("contact solver through SolverOptions: projected Gauss-Seidel gives the active set's run where the law is "
-          "monotone; refused where it does not apply", "[mixed][contact_solver]") {
+          "monotone - refused where it does not apply", "[mixed][contact_solver]") {
     // [treatments]' string with static == kinetic walls (f_rat 1: the monotone law, each step's solution unique)
     TorsionalStringParams p = field_params(2e-3);
     p.kinetic_ratio = 1.0;

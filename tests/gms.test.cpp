@@ -142,7 +142,7 @@ TEST_CASE("GMS presliding: virgin slope sum k_i, Maxwell-slip forces at the reve
     CHECK(ra.friction_force[450] - ra.friction_force[350] == Approx(1.2).margin(0.01));
 }
 
-TEST_CASE("GMS frictional lag: in unidirectional sliding F is higher accelerating than decelerating; the loop "
+TEST_CASE("GMS frictional lag: in unidirectional sliding F is higher accelerating than decelerating - the loop "
           "shrinks with the frequency, as 2 (s/C) |s'(v)| dv/dt",
           "[gms][kinematic_rig]") {
     // v = 1 mm/s - 0.8 mm/s cos(w t): through the Stribeck range, never reversing. At t = T/4 (accelerating) and
@@ -223,7 +223,7 @@ TEST_CASE("GMS parameter rules: each field rejected naming it, the weights must 
 
 using frictionsim::test::check_energy_balance;
 
-TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work; the blocks never give energy back "
+TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work - the blocks never give energy back "
           "beyond what their springs store",
           "[gms][axial_rig][energy]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
@@ -259,7 +259,7 @@ TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work; the
     }
 }
 
-TEST_CASE("GMS analytic partials = central differences, in each regime; the axial rig's Jacobian with them",
+TEST_CASE("GMS analytic partials = central differences, in each regime - the axial rig's Jacobian with them",
           "[gms][jacobian]") {
     const GMS law(params(3.0, 1.5));
     std::mt19937 rng(7);
@@ -368,7 +368,7 @@ TEST_CASE("GMS analytic partials = central differences, in each regime; the axia
     CHECK(checked == 40);
 }
 
-TEST_CASE("GMS kink at v_r = 0 located as an event on the axial rig: both integrators agree; Dormand-Prince takes "
+TEST_CASE("GMS kink at v_r = 0 located as an event on the axial rig: both integrators agree - Dormand-Prince takes "
           "fewer steps (not stiff)",
           "[gms][axial_rig]") {
     static_assert(check_friction_law<GMS>() && law_has_partials_v<GMS> && !declares_stiff<GMS>::value);

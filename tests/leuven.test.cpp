@@ -172,7 +172,7 @@ struct CircleClosedForm {
 
 }  // namespace
 
-TEST_CASE("Leuven steady sliding: F = S(v) + sigma_2 v (the Stribeck curve); sigma_1 drops out", "[leuven][kinematic_rig]") {
+TEST_CASE("Leuven steady sliding: F = S(v) + sigma_2 v (the Stribeck curve) - sigma_1 drops out", "[leuven][kinematic_rig]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     for (double n : {1.0, 2.0, 4.0}) {
         const Leuven law(params(n, 50.0, 2.0));
@@ -451,7 +451,7 @@ TEST_CASE("Leuven on a planar wall: sliding along a tilted line keeps the 1D mem
 }
 
 TEST_CASE("Leuven on a planar wall: a turn past 90 degrees within a presliding length is a reversal at the closed-"
-          "form time, with the 1D memory of the projected motion; a slow turn is none",
+          "form time, with the 1D memory of the projected motion - a slow turn is none",
           "[leuven][wall_contact]") {
     // V = 0.1 mm/s, l = F_s / k = 40 um: K = V / l = 2.5 rad/s (CircleClosedForm)
     const Leuven law(params(4.0));

@@ -213,7 +213,7 @@ TEST_CASE("mixed treatment: all-captured and mixed converge to the event-driven 
 }
 
 TEST_CASE("one string, two treatments: StringRig exact and the captured string agree as h -> 0 (same damping, "
-          "drive, walls; the same mode column)", "[mixed][treatments]") {
+          "drive, walls - the same mode column)", "[mixed][treatments]") {
     // 1000 m of 5" pipe in Case's well, off bottom, Coulomb walls mu_s 0.3 (kinetic 0.6 of it) at every node below
     // the vertical top, the PI stepped to 4 rad/s, and StringRig's element damping beta k_e in both models: all walls
     // stuck at first, the string breaks off, overshoots and settles to sliding. The exact model locates every wall's
@@ -556,7 +556,7 @@ TEST_CASE("mixed treatment: the driver locates a pulled block's stick-slip to th
     for (std::size_t i = 0; i < steps.size(); ++i) CHECK(stick_error[i] < captured_error[i]);
 }
 
-TEST_CASE("mixed treatment: bad input names the parameter; a stopped run keeps its partial result",
+TEST_CASE("mixed treatment: bad input names the parameter - a stopped run keeps its partial result",
           "[mixed][validation]") {
     const PulledBlock b;
     const auto make = [&](MoreauJeanEventsOptions o) {
@@ -1059,7 +1059,7 @@ struct EulerGrowth {
 
 }  // namespace
 
-TEST_CASE("one entry point: a user's own time-stepping model; non-finite states and max_steps stop the run",
+TEST_CASE("one entry point: a user's own time-stepping model - non-finite states and max_steps stop the run",
           "[mixed][entry]") {
     const EulerGrowth model;
     SolverOptions o;  // automatic: moreau_jean's loop; the model ignores what it does not use

@@ -134,7 +134,7 @@ TEST_CASE("Moreau-Jean: the driven spring-block's exact stick-slip cycle, first 
     }
 }
 
-TEST_CASE("Moreau-Jean: the field codes' projection is the explicit special case; its stick band costs half an order",
+TEST_CASE("Moreau-Jean: the field codes' projection is the explicit special case - its stick band costs half an order",
           "[moreau_jean]") {
     // Explicit: W = M, the inclusion decouples and the clipped predicted force is its solution; a slipping contact
     // needs the stick band to be caught (|v| below the speed its friction removes in a step, d h / m). Inside the
@@ -160,7 +160,7 @@ TEST_CASE("Moreau-Jean: the field codes' projection is the explicit special case
     CHECK(order < 0.7);
 }
 
-TEST_CASE("Moreau-Jean: the coupled one-step inclusion equals the enumeration of all mode sets; contact by contact "
+TEST_CASE("Moreau-Jean: the coupled one-step inclusion equals the enumeration of all mode sets - contact by contact "
           "would violate it",
           "[moreau_jean]") {
     // Three unit masses, stiff springs and dashpots between neighbours; h so large that W is far from diagonal.
@@ -314,7 +314,7 @@ TEST_CASE("Moreau-Jean: energy balance, exact for theta = 1/2 and O(h) with the 
     CHECK(coarse / fine == Approx(2.0).margin(0.4));
 }
 
-TEST_CASE("Moreau-Jean: bad options and sizes name the parameter; a non-finite state stops with the time reached",
+TEST_CASE("Moreau-Jean: bad options and sizes name the parameter - a non-finite state stops with the time reached",
           "[moreau_jean][validation]") {
     const SpringBlock b;
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(1);
@@ -527,7 +527,7 @@ TEST_CASE("Moreau-Jean: the finiteness test and the masked select used on the ch
     CHECK(detail::masked(-2.5, ~std::uint64_t{0}) == -2.5);
 }
 
-TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update gives a whole-chain solve's bits",
+TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r - an update gives a whole-chain solve's bits",
           "[moreau_jean]") {
     // A chain with W = diag + sub/superdiagonal (diagonally dominant: SPD), stuck dofs replaced by identity rows and
     // columns. After each random switch set: the updated x equals, bit for bit, the x of a fresh factor + solve, and
@@ -600,7 +600,7 @@ TEST_CASE("ChainLDLT: the twisted factors and solve solve W x = r; an update giv
     }
 }
 
-TEST_CASE("Moreau-Jean: the contact solver is swappable; projected Gauss-Seidel gives the active set's step where the "
+TEST_CASE("Moreau-Jean: the contact solver is swappable - projected Gauss-Seidel gives the active set's step where the "
           "law is monotone",
           "[moreau_jean]") {
     // Each step of the default (exact active set on the chain) is repeated from the same state by a stepper whose

@@ -340,7 +340,7 @@ TEST_CASE("oscillator drag: a horizontal string sliding gains the closed-form dr
     CHECK(together > one);
 }
 
-TEST_CASE("oscillator drag: more force, larger zone and more weight on bit; rotation and Table 5 reduce less",
+TEST_CASE("oscillator drag: more force, larger zone and more weight on bit - rotation and Table 5 reduce less",
           "[oscillator]") {
     const DrillString string({pipe(5800.0), pipe(200.0)});
     const OscillatorDrag model(horizontal_well(), string, 3000);

@@ -82,7 +82,7 @@ TEST_CASE("oscillator response: a frictionless string resonates at (2n - 1) c / 
     }
 }
 
-TEST_CASE("oscillator response: with wall friction, the travelling-wave estimate where it holds; the same zone",
+TEST_CASE("oscillator response: with wall friction, the travelling-wave estimate where it holds - the same zone",
           "[oscillator][dynamic][heavy]") {
     // 1400 m of pipe sliding at 30 m/h in a horizontal hole (mu 0.3), a tool (F = 34 kN, 18 Hz) in the middle,
     // through OscillatorDrag (1 m elements) by both routes. The estimate: a_0 = F / (2 Z) at the tool, b = sqrt(a^2 -

@@ -221,7 +221,7 @@ TEST_CASE("soft string: a course through the vertical turns the tension by its d
           Approx(pulled * std::pow(1.0 + mu * theta / 100.0, 100.0)).epsilon(1e-11));
 }
 
-TEST_CASE("soft string: pure rotation carries no axial friction; torque = mu r times the sum of side forces",
+TEST_CASE("soft string: pure rotation carries no axial friction - torque = mu r times the sum of side forces",
           "[soft_string]") {
     PipeSection collar = pipe(200.0);
     collar.outer_diameter = 0.1651;

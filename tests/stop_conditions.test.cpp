@@ -145,7 +145,7 @@ TEST_CASE("stop conditions: a switch into a named mode ends the run with the sta
     }
 }
 
-TEST_CASE("events carry the state before and after the switch; record_event_rows puts rows at both sides", "[stop]") {
+TEST_CASE("events carry the state before and after the switch - record_event_rows puts rows at both sides", "[stop]") {
     SolverOptions o;
     o.output_times = {0.0, 0.5, 1.5, 2.5, 3.0};
     o.record_event_rows = true;

@@ -146,7 +146,7 @@ TEST_CASE("minimum curvature: a straight inclined hole, and the ratio factor's s
     CHECK(std::isfinite(mid.azimuth));
 }
 
-TEST_CASE("survey: dogleg against the spherical formula; a vertical station's azimuth does not matter", "[survey]") {
+TEST_CASE("survey: dogleg against the spherical formula - a vertical station's azimuth does not matter", "[survey]") {
     // the textbook spherical form: cos(beta) = cos(I2 - I1) - sin I1 sin I2 (1 - cos(A2 - A1))
     const std::vector<std::array<double, 4>> courses{
         {10.0, 30.0, 14.0, 42.0}, {45.0, 350.0, 50.0, 10.0}, {88.0, 90.0, 92.0, 96.0}, {5.0, 0.0, 3.0, 180.0},

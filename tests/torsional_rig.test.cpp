@@ -662,7 +662,7 @@ TEST_CASE("torsional rig: reversing w_ref mirrors the run (odd laws, negative-si
     }
 }
 
-TEST_CASE("torsional rig: the disc torque scales with N2 (eq 6: N2 / N_ref; engine laws: r F(N2))",
+TEST_CASE("torsional rig: the disc torque scales with N2 (eq 6: N2 / N_ref - engine laws: r F(N2))",
           "[torsional_rig][hysteretic]") {
     // Twice the normal force with half the coefficients (hysteretic), or with half the contact radius (Coulomb):
     // the same disc torque, so the same run.

@@ -131,7 +131,7 @@ TEST_CASE("Stribeck rejects every non-physical parameter, naming it", "[validati
     CHECK_NOTHROW(Stribeck(edge));
 }
 
-TEST_CASE("Dahl rejects non-physical parameters, naming them; exponent in [0.5, 50]", "[validation][dahl]") {
+TEST_CASE("Dahl rejects non-physical parameters, naming them - exponent in [0.5, 50]", "[validation][dahl]") {
     std::vector<double> bad_exponent = negative_or_nonfinite;
     for (double v : {0.0, 0.1, 0.3, 0.4999, 50.001, 1e3}) bad_exponent.push_back(v);
     check_rules({

@@ -138,6 +138,32 @@ frictionsim_build() {
     cmake --build "$FRICTIONSIM_BUILD_DIR" --parallel "$FRICTIONSIM_JOBS" "${target[@]}"
 }
 
+# frictionsim_list_cases BINARY SPEC: the names of the Catch2 cases SPEC selects, one per line (Catch2 2.x exits with
+# their count: not an error here; no case at all is).
+frictionsim_list_cases() {
+    local names
+    names="$("$1" --list-test-names-only "$2" || true)"
+    if [[ -z "$names" ]]; then
+        echo "error: $1 lists no test case for '$2'" >&2
+        return 1
+    fi
+    printf '%s\n' "$names" | grep .
+}
+
+# frictionsim_check_registered BUILD_DIR SPEC: ctest in BUILD_DIR registered every case SPEC selects under its own
+# name (other tests may be registered beside them). A name catch_discover_tests cannot carry (a ';' splits it into
+# two tests that match no case and pass) fails here.
+frictionsim_check_registered() {
+    local missing
+    missing="$(comm -23 <(frictionsim_list_cases "$1/tests/frictionsim_tests" "$2" | LC_ALL=C sort) \
+        <(cd "$1" && ctest -N | sed -n 's/^ *Test *#[0-9]*: //p' | LC_ALL=C sort))"
+    if [[ -n "$missing" ]]; then
+        echo "error: ctest in $1 did not register these cases of '$2' (a ';' in a name splits it):" >&2
+        printf '%s\n' "$missing" >&2
+        return 1
+    fi
+}
+
 frictionsim_venv() {
     local python="${FRICTIONSIM_PYTHON:-python3}"
     if [[ ! -x "$FRICTIONSIM_VENV/bin/python" ]]; then
