@@ -229,6 +229,24 @@ const std::vector<const char*> rig_extras{"bit",           "weight_on_bit", "ele
                                           "normal_forces", "excitation_node", "node_inclinations",
                                           "start_hanging"};
 
+/// The items of a per-node sequence, each read by `read`, refused past one per node of the longest string (an
+/// endless iterator must end in an error, not hang).
+template <class Read>
+auto per_node_items(py::handle values, const char* keyword, const char* what, Read read) {
+    if (py::isinstance<py::str>(values) || py::isinstance<py::bytes>(values) || !py::hasattr(values, "__iter__"))
+        throw py::type_error(std::string(rig_name) + ": " + keyword + " must be a sequence of " + what + " (got " +
+                             type_name(values) + ")");
+    std::vector<decltype(read(values))> items;
+    for (py::handle item : values) {
+        if (items.size() > static_cast<std::size_t>(max_elements))
+            throw InvalidParameter(keyword, std::string(rig_name) + ": " + keyword + " holds more than one item per " +
+                                                "node of a string of at most " + std::to_string(max_elements) +
+                                                " elements");
+        items.push_back(read(item));
+    }
+    return items;
+}
+
 BoundStringRig make_string_rig(py::handle string, py::handle friction, const py::kwargs& kwargs) {
     require_constructed(string);
     if (!py::isinstance<DrillString>(string))
@@ -267,11 +285,9 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     if (given("wall_contacts")) setup.wall_contacts = flag_from(kwargs["wall_contacts"], "wall_contacts");
     if (given("contact_nodes")) {
         nodes_given = true;
-        const py::handle v = kwargs["contact_nodes"];
-        if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v))
-            throw py::type_error(std::string(rig_name) + ": contact_nodes must be a sequence of node numbers (got " +
-                                 type_name(v) + ")");
-        for (py::handle node : v) setup.contact_nodes.push_back(count_from(node, "contact_nodes", 0, max_elements));
+        setup.contact_nodes = per_node_items(kwargs["contact_nodes"], "contact_nodes", "node numbers", [](py::handle n) {
+            return count_from(n, "contact_nodes", 0, max_elements);
+        });
         if (setup.contact_nodes.empty())
             throw InvalidParameter("contact_nodes", std::string(rig_name) +
                                                         ": contact_nodes must name at least one node (None: every "
@@ -279,11 +295,8 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     }
     if (given("normal_forces")) {
         forces_given = true;
-        const py::handle v = kwargs["normal_forces"];
-        if (py::isinstance<py::str>(v) || !py::isinstance<py::sequence>(v))
-            throw py::type_error(std::string(rig_name) + ": normal_forces must be a sequence of forces in N (got " +
-                                 type_name(v) + ")");
-        for (py::handle f : v) setup.normal_forces.push_back(real_from(f, "normal_forces"));
+        setup.normal_forces = per_node_items(kwargs["normal_forces"], "normal_forces", "forces in N",
+                                             [](py::handle f) { return real_from(f, "normal_forces"); });
         if (setup.normal_forces.empty())
             throw InvalidParameter("normal_forces", std::string(rig_name) +
                                                         ": normal_forces must hold one force per contact node (None: "
@@ -294,11 +307,8 @@ BoundStringRig make_string_rig(py::handle string, py::handle friction, const py:
     if (given("start_hanging")) hanging = flag_from(kwargs["start_hanging"], "start_hanging");
     if (given("node_inclinations")) {
         inclinations_given = true;
-        const py::handle v = kwargs["node_inclinations"];
-        if (py::isinstance<py::str>(v) || !py::hasattr(v, "__iter__"))
-            throw py::type_error(std::string(rig_name) +
-                                 ": node_inclinations must be a sequence of angles in rad (got " + type_name(v) + ")");
-        for (py::handle a : v) setup.node_inclinations.push_back(real_from(a, "node_inclinations"));
+        setup.node_inclinations = per_node_items(kwargs["node_inclinations"], "node_inclinations", "angles in rad",
+                                                 [](py::handle a) { return real_from(a, "node_inclinations"); });
         if (setup.node_inclinations.empty())
             throw InvalidParameter("node_inclinations", std::string(rig_name) +
                                                             ": node_inclinations must hold one angle per node (None: "
@@ -822,9 +832,6 @@ mixed costs 1.07x and the exact 1.43x the captured). Off bottom the mixed treatm
         return previous;
     }, py::arg("flag"), "Sets the object whose is_set() this thread's string runs poll beside Ctrl-C (None: none); "
                         "returns the previous one.");
-    for (const py::handle c : {py::handle(section), py::handle(string), py::handle(bit), py::handle(drag),
-                               py::handle(cls)})
-        guard_members(c);
     return std::move(cls);
 }
 

@@ -36,46 +36,36 @@ bool constructs(py::handle name) {
 
 /// Every argument that is an instance of the extension, and the items of a list or tuple argument (a string's
 /// sections, a survey's stations), constructed: pybind11 would pass a never-constructed one's uninitialised value.
-void require_all_constructed(const py::args& args, const py::kwargs& kwargs) {
+/// The first `skip` positional arguments are left unchecked (1: __init__'s self, the instance being built).
+void require_all_constructed(const py::args& args, const py::kwargs& kwargs, std::size_t skip) {
     const auto check = [](const py::handle& value) {
         require_constructed(value);
         if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr()))
             for (const py::handle item : value) require_constructed(item);
     };
-    for (const py::handle arg : args) check(arg);
+    for (std::size_t i = skip; i < args.size(); ++i) check(args[i]);
     for (const auto item : kwargs) check(item.second);
 }
 
-/// Names a class keeps unwrapped: what constructs (__init__, __new__, __setstate__), the guard itself and
-/// pybind11's own cross-module hook.
+/// Names a class keeps unwrapped: what constructs (__new__, __setstate__; __init__ checks its arguments only) and the
+/// guard itself. (pybind11's cross-module hook _pybind11_conduit_v1_ is guarded too: it hands out self's pointer.)
 bool left_unwrapped(const std::string& name) {
-    return name == "__init__" || name == "__new__" || name == "__setstate__" || name == "__getattribute__" ||
-           name == "_pybind11_conduit_v1_";
+    return name == "__new__" || name == "__setstate__" || name == "__getattribute__";
 }
 
-/// `function` with require_constructed(self) first, under the same name and with the same docstring (signatures
-/// included, as pybind11 wrote them: help() and the stub generator read them), as a method of `cls`.
-py::object guarded(const py::handle& cls, const std::string& name, const py::object& function) {
+/// `function` with every argument's construction checked first (self included), under the same name and with the
+/// same docstring (signatures included, as pybind11 wrote them: help() and the stub generator read them); `where`
+/// is py::is_method(cls) for a class's member, py::scope(module) for a module-level function.
+template <class Where>
+py::object guarded(const std::string& name, const py::object& function, const Where& where, std::size_t skip = 0) {
     py::options docs;
     docs.disable_function_signatures();  // the docstring is the original's, signature lines and all
     const py::object doc = py::getattr(function, "__doc__", py::none());
     const char* text = doc.is_none() ? "" : kept(doc.cast<std::string>());
-    return py::cpp_function([function](py::args args, py::kwargs kwargs) {
-        require_all_constructed(args, kwargs);
+    return py::cpp_function([function, skip](py::args args, py::kwargs kwargs) {
+        require_all_constructed(args, kwargs, skip);
         return function(*args, **kwargs);
-    }, py::name(kept(name)), py::is_method(cls), py::doc(text));
-}
-
-/// A module-level function of the extension, guarded like the methods.
-py::object guarded_function(const py::module_& m, const std::string& name, const py::object& function) {
-    py::options docs;
-    docs.disable_function_signatures();
-    const py::object doc = py::getattr(function, "__doc__", py::none());
-    const char* text = doc.is_none() ? "" : kept(doc.cast<std::string>());
-    return py::cpp_function([function](py::args args, py::kwargs kwargs) {
-        require_all_constructed(args, kwargs);
-        return function(*args, **kwargs);
-    }, py::name(kept(name)), py::scope(m), py::doc(text));
+    }, py::name(kept(name)), where, py::doc(text));
 }
 
 /// Every class of the module checks construction wherever Python reaches an instance's C++ value: attribute access
@@ -89,7 +79,7 @@ void guard_construction(py::module_& m) {
     for (const auto item : m.attr("__dict__").cast<py::dict>())
         if (PyCFunction_Check(item.second.ptr()) && py::isinstance<py::str>(item.first))
             functions.emplace_back(py::str(item.first), py::reinterpret_borrow<py::object>(item.second));
-    for (const auto& [name, function] : functions) m.attr(name.c_str()) = guarded_function(m, name, function);
+    for (const auto& [name, function] : functions) m.attr(name.c_str()) = guarded(name, function, py::scope(m));
     for (const auto item : m.attr("__dict__").cast<py::dict>()) {
         const py::handle cls = item.second;
         if (!PyType_Check(cls.ptr()) || !py::hasattr(cls, "__module__") ||
@@ -103,12 +93,14 @@ void guard_construction(py::module_& m) {
             if (left_unwrapped(name)) continue;
             if (PyInstanceMethod_Check(value.ptr())) {
                 const py::object function = py::reinterpret_borrow<py::object>(PyInstanceMethod_GET_FUNCTION(value.ptr()));
-                replaced.emplace_back(name, guarded(cls, name, function));
+                replaced.emplace_back(name, guarded(name, function, py::is_method(cls), name == "__init__" ? 1 : 0));
+            } else if (py::isinstance<py::staticmethod>(value)) {
+                replaced.emplace_back(name, py::staticmethod(guarded(name, value.attr("__func__"), py::scope(cls))));
             } else if (Py_TYPE(value.ptr()) == &PyProperty_Type) {
                 // a property of getter and setter, both guarded, its docstring kept
                 const py::object fget = value.attr("fget"), fset = value.attr("fset");
-                const py::object get = fget.is_none() ? py::none() : guarded(cls, name, fget);
-                const py::object set = fset.is_none() ? py::none() : guarded(cls, name, fset);
+                const py::object get = fget.is_none() ? py::none() : guarded(name, fget, py::is_method(cls));
+                const py::object set = fset.is_none() ? py::none() : guarded(name, fset, py::is_method(cls));
                 replaced.emplace_back(name, py::reinterpret_borrow<py::object>(reinterpret_cast<PyObject*>(
                                                 &PyProperty_Type))(get, set, py::none(), value.attr("__doc__")));
             }
@@ -117,7 +109,7 @@ void guard_construction(py::module_& m) {
         // a class without a repr of its own shows the object's: guarded too (it prints nothing of the value, but a
         // bare instance should say what it is wherever it is used)
         if (!cls.attr("__dict__").contains("__repr__"))
-            py::setattr(cls, "__repr__", guarded(cls, "__repr__", cls.attr("__repr__")));
+            py::setattr(cls, "__repr__", guarded("__repr__", cls.attr("__repr__"), py::is_method(cls)));
         py::setattr(cls, "__getattribute__", py::cpp_function([](py::handle self, py::handle name) {
             if (!constructs(name)) require_constructed(self);
             PyObject* value = PyObject_GenericGetAttr(self.ptr(), name.ptr());

@@ -50,7 +50,6 @@ void def_navarro_lopez_methods(Class& cls) {
              py::arg("speed"),
              "u - (c_r + c_b) w - R_b W mu_b(w) - sum T_p [N m] at a common speed w > 0 [rad/s] (arrays broadcast): "
              "the sum of all equations with every inertia at w; its root is the steady speed while the bit turns.");
-    guard_members(cls);  // def_rig_methods comes last in register_rig: the class is complete
 }
 
 }  // namespace

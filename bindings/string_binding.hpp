@@ -1,13 +1,6 @@
 // What the drill-string bindings (drillstring.cpp, torsional_string.cpp, navarro_lopez.cpp) share beyond common.hpp:
-// the construction guard of their classes' members, and the stop flag a worker thread's string runs poll.
-//
-// The guard (issue 23): module.cpp's guard_construction checks an instance's construction on attribute access and in
-// repr; what escaped it were the members reached through the class (Cls.method(bare, ...), Cls.prop.fget(bare),
-// a static method given a bare instance), the dunders the interpreter calls through the type's slots (len, bool:
-// no attribute lookup) and bare instances passed as arguments. pybind11 then casts the bare instance, and for an
-// instance made by __new__ it allocates an uninitialised value on that first cast (type_caster_generic's lazy
-// allocation): garbage sizes, then a crash. guard_members wraps every member of a class so that the check runs
-// before any cast, on self and on every argument (and the items of a list or tuple argument).
+// the readers of their keywords and the stop flag a worker thread's string runs poll. (The construction guard of
+// their classes is module.cpp's, as for every class of the extension.)
 #pragma once
 
 #include <algorithm>
@@ -21,91 +14,6 @@
 #include "table_binding.hpp"
 
 namespace frictionsim::python {
-
-/// A pybind11 instance made by __new__ without __init__ (or by an empty pickle). Its value pointer alone does not
-/// tell once pybind11 has cast it (the lazy allocation fills it): an instance that owns its value but has no
-/// holder was never constructed (a constructed one owns a holder; a reference into another object owns nothing).
-inline bool never_constructed(py::handle obj) {
-    if (!PyObject_IsInstance(obj.ptr(), py::detail::get_internals().instance_base)) return false;
-    auto* inst = reinterpret_cast<py::detail::instance*>(obj.ptr());
-    const auto v_h = inst->get_value_and_holder();
-    return !v_h.holder_constructed() && (v_h.value_ptr() == nullptr || inst->owned);
-}
-
-/// TypeError "<Type> object was never constructed ..." (require_constructed's words) for a bare instance.
-inline void require_built(py::handle obj) {
-    require_constructed(obj);
-    if (never_constructed(obj)) {
-        const std::string type = py::str(py::type::of(obj).attr("__name__"));
-        throw py::type_error(type + " object was never constructed (made by " + type +
-                             ".__new__ or an incomplete pickle): build it with " + type + "(...)");
-    }
-}
-
-/// require_built on a value and, for a list or a tuple, on its items (a DrillString's sections).
-inline void require_built_argument(py::handle value) {
-    require_built(value);
-    if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr()))
-        for (py::handle item : value) require_built(item);
-}
-
-inline void require_built_arguments(const py::args& args, const py::kwargs& kwargs) {
-    for (py::handle a : args) require_built_argument(a);
-    for (auto item : kwargs) require_built_argument(item.second);
-}
-
-/// The original's docstring, kept as it was (signature line included), so help() and the generated stub see
-/// the same member.
-inline py::object doc_of(py::handle function) { return py::getattr(function, "__doc__", py::none()); }
-
-inline py::cpp_function guarded_function(py::handle cls, const std::string& name, py::object original,
-                                         bool check_self) {
-    const py::object doc = doc_of(original);
-    const char* text = doc.is_none() ? "" : kept(doc.cast<std::string>());
-    py::options options;
-    options.disable_function_signatures();
-    if (cls.is_none())  // a static method or a property's accessor: every argument checked
-        return py::cpp_function(
-            [original](const py::args& args, const py::kwargs& kwargs) {
-                require_built_arguments(args, kwargs);
-                return original(*args, **kwargs);
-            },
-            py::name(kept(name)), py::doc(text));
-    return py::cpp_function(
-        [original, check_self](py::handle self, const py::args& args, const py::kwargs& kwargs) {
-            if (check_self) require_built(self);
-            require_built_arguments(args, kwargs);
-            return original(self, *args, **kwargs);
-        },
-        py::name(kept(name)), py::is_method(cls), py::doc(text));
-}
-
-/// Wraps every method (dunders and __init__ included: __init__ checks its arguments, not the instance it builds),
-/// static method and property of `cls`'s own __dict__ in the construction check. Call it once the class is
-/// complete; data attributes (parameters, outputs) are left as they are.
-inline void guard_members(py::handle cls) {
-    const py::dict members(cls.attr("__dict__"));  // a copy: the class is changed below
-    const py::handle staticmethod_type = reinterpret_cast<PyObject*>(&PyStaticMethod_Type);
-    for (auto item : members) {
-        const std::string name = py::str(item.first);
-        const py::object value = py::reinterpret_borrow<py::object>(item.second);
-        if (PyInstanceMethod_Check(value.ptr())) {
-            py::setattr(cls, name.c_str(), guarded_function(cls, name, value.attr("__func__"), name != "__init__"));
-        } else if (py::isinstance(value, staticmethod_type)) {
-            py::setattr(cls, name.c_str(),
-                        py::staticmethod(guarded_function(py::none(), name, value.attr("__func__"), false)));
-        } else if (Py_TYPE(value.ptr()) == &PyProperty_Type) {
-            const auto accessor = [&](const char* which) -> py::object {
-                const py::object f = value.attr(which);
-                // as pybind11 makes a property's accessors: plain functions of the instance (every argument checked)
-                return f.is_none() ? f : py::object(guarded_function(py::none(), name, f, false));
-            };
-            const py::object property = py::module_::import("builtins").attr("property");
-            py::setattr(cls, name.c_str(),
-                        property(accessor("fget"), accessor("fset"), accessor("fdel"), doc_of(value)));
-        }
-    }
-}
 
 /// NumPy's bool (np.bool_, named "bool" since NumPy 2): a flag like Python's bool.
 inline bool is_numpy_bool(py::handle value) {

@@ -105,7 +105,7 @@ struct GivenSurvey {
 };
 
 GivenSurvey survey_from(py::handle value) {
-    require_built(value);  // a bare Survey would be cast to an uninitialised one
+    require_constructed(value);  // a bare Survey would be cast to an uninitialised one
     if (py::isinstance<Survey>(value)) {
         GivenSurvey g;
         g.survey = value.cast<Survey>();
@@ -421,7 +421,6 @@ py::object register_rig<time_stepping_rig<TorsionalString, TorsionalStringParams
             }
             return out + changed_fields_repr(r.params, fields) + ")";
         });
-    guard_members(cls);
 
     m.def("aarsnes_shor_well_b", [](const std::string& collar, const std::string& wave_speed, double measured_depth,
                                     const py::kwargs& kwargs) {

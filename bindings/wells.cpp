@@ -99,48 +99,6 @@ void refuse_arrays(const py::kwargs& kwargs, const char* owner) {
                                  std::string(py::str(item.second.attr("shape"))));
 }
 
-/// Calls `function` after refusing an unconstructed instance among its arguments, self included (`skip` = 1 in
-/// __init__, whose self is the instance being built): what the construction guard of bindings/module.cpp does not
-/// reach, a class's function called with the instance (Survey.tvd.fget(s), Survey.__len__(s)), the slots the
-/// interpreter calls without attribute access (len, bool) and instances passed as arguments.
-py::object refusing_unconstructed(const py::object& function, const py::object& doc, const char* name,
-                                  std::size_t skip, py::handle cls) {
-    py::options options;
-    options.disable_function_signatures();  // the original's docstring already holds them
-    const char* text = doc.is_none() ? "" : kept(doc.cast<std::string>());
-    const auto call = [function, skip](const py::args& args, const py::kwargs& kwargs) {
-        for (std::size_t i = skip; i < args.size(); ++i) require_constructed(args[i]);
-        for (const auto item : kwargs) require_constructed(item.second);
-        return function(*args, **kwargs);
-    };
-    if (cls.is_none()) return py::cpp_function(call, py::name(name), py::doc(text));
-    return py::cpp_function(call, py::name(name), py::doc(text), py::is_method(cls));
-}
-
-/// Every method, dunder, property getter and static method of `cls` through refusing_unconstructed.
-void guard_class(py::handle cls) {
-    const py::object property = py::module_::import("builtins").attr("property");
-    std::vector<std::pair<std::string, py::object>> items;
-    for (const auto item : cls.attr("__dict__").cast<py::dict>())
-        items.emplace_back(py::str(item.first), py::reinterpret_borrow<py::object>(item.second));
-    for (const auto& [name, value] : items) {
-        const char* key = kept(name);
-        if (PyInstanceMethod_Check(value.ptr())) {
-            const auto f = py::reinterpret_borrow<py::object>(PyInstanceMethod_GET_FUNCTION(value.ptr()));
-            const py::object guarded = refusing_unconstructed(f, f.attr("__doc__"), key, name == "__init__", cls);
-            py::setattr(cls, key, guarded);
-        } else if (py::isinstance(value, property)) {
-            const py::object fget = value.attr("fget");
-            if (fget.is_none()) continue;
-            const py::object guarded = refusing_unconstructed(fget, fget.attr("__doc__"), key, 0, py::none());
-            py::setattr(cls, key, property(guarded, value.attr("fset"), value.attr("fdel"), value.attr("__doc__")));
-        } else if (py::isinstance<py::staticmethod>(value)) {
-            const py::object f = value.attr("__func__");
-            py::setattr(cls, key, py::staticmethod(refusing_unconstructed(f, f.attr("__doc__"), key, 0, py::none())));
-        }
-    }
-}
-
 /// Runs `f` with the GIL released and Ctrl-C polled between the dynamic run's steps (o.dynamic.interrupt):
 /// KeyboardInterrupt as the signal handler raised it.
 template <class F>
@@ -1020,10 +978,6 @@ Built by SoftString.run; TorqueDragResult(**fields) rebuilds one from its fields
                                                                s.model.elements(),
                                                                torque_drag_method_name(s.model.method())));
         });
-
-    for (const char* name : {"Survey", "TorqueDragResult", "OscillatorResponse", "HydraulicOscillator",
-                             "OscillatorDragResult", "SoftString"})
-        guard_class(m.attr(name));
 }
 
 }  // namespace frictionsim::python

@@ -1618,7 +1618,7 @@ std::vector<double> between_samples(double t_end) {
 }  // namespace
 
 TEST_CASE("string rig: a sampled PI on a frictionless two-node string follows the zero-order hold's recursion - the "
-          "samples located at k T_c, the torque held between them", "[string_rig][top_drive][sampled]") {
+          "samples located at k T_c, the torque held between them", "[string_rig][top_drive][sampled][heavy]") {
     struct Case {
         const char* name;
         double filter, limit;

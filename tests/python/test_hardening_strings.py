@@ -304,6 +304,32 @@ t_end = 60.0
     assert "elements" in str(caught.value), caught.value
 
 
+_ENDLESS = """
+import itertools, frictionsim as fs
+string = fs.DrillString([fs.PipeSection(length=1000.0)])
+for keyword, endless in [("node_inclinations", itertools.repeat(0.5)), ("normal_forces", itertools.repeat(1e3)),
+                         ("contact_nodes", itertools.count(0))]:
+    try:
+        fs.StringRig(string, fs.Coulomb(0.3), elements=10, **{keyword: endless})
+        print("RESULT", keyword, "no error", sep="\\t")
+    except fs.InvalidParameterError as error:
+        print("RESULT", keyword, error.parameter, str(error), sep="\\t")
+"""
+
+
+@pytest.mark.parametrize("keyword", ["node_inclinations", "normal_forces", "contact_nodes"])
+def test_an_endless_iterator_per_node_is_refused_naming_it(keyword):
+    # Before: node_inclinations=itertools.repeat(0.5) hung (read item by item without a bound). The bound is one
+    # item per node of the longest string the rig accepts (1e5 elements); the child's timeout turns a hang into a
+    # failure.
+    done = _run(_ENDLESS, timeout=120.0)
+    results = {line.split("\t")[1]: line.split("\t")[2:] for line in done.stdout.splitlines()
+               if line.startswith("RESULT")}
+    assert keyword in results, (done.stdout, done.stderr)
+    assert results[keyword][0] == keyword, results[keyword]
+    assert "100000 elements" in results[keyword][1], results[keyword]
+
+
 @pytest.mark.skipif(not fs.HAS_EIGEN, reason="no TorsionalString without Eigen")
 def test_a_captured_string_past_the_work_limit_is_refused_naming_t_end():
     rig = fs.TorsionalString(_string(), elements=1000)
