@@ -506,9 +506,11 @@ private:
         return {&sections.back(), sections.size() - 1};
     }
 
-    /// int_a^b F_c dx: 3-point Gauss on pieces of at most 10 m, split at section and survey stations (F_c is smooth
-    /// in between), so the node bounds sum to the break-off torque independently of the grid.
+    /// int_a^b F_c dx: 3-point Gauss on pieces of at most 10 m (or L / 1e5 on a string longer than 1000 km, so the
+    /// work stays bounded whatever the length), split at section and survey stations (F_c is smooth in between), so
+    /// the node bounds sum to the break-off torque independently of the grid.
     double friction_integral(double a, double b) const {
+        const double piece = std::max(10.0, string_.length() / 1e5);
         std::vector<double> cuts{a, b};
         double top = 0.0;
         for (const PipeSection& s : string_.sections()) {
@@ -522,10 +524,12 @@ private:
         const double g = std::sqrt(0.6);
         double sum = 0.0;
         for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
-            const int pieces = std::max(1, static_cast<int>(std::ceil((cuts[i + 1] - cuts[i]) / 10.0)));
-            const double dx = (cuts[i + 1] - cuts[i]) / pieces;
-            for (int k = 0; k < pieces; ++k) {
-                const double m = cuts[i] + (k + 0.5) * dx, r = 0.5 * dx;
+            // at most 1e5 + 1 pieces (cuts[i + 1] - cuts[i] <= L): the count fits a size_t
+            const auto pieces = std::max<std::size_t>(
+                1, static_cast<std::size_t>(std::ceil((cuts[i + 1] - cuts[i]) / piece)));
+            const double dx = (cuts[i + 1] - cuts[i]) / static_cast<double>(pieces);
+            for (std::size_t k = 0; k < pieces; ++k) {
+                const double m = cuts[i] + (static_cast<double>(k) + 0.5) * dx, r = 0.5 * dx;
                 sum += r * (5.0 / 9.0 * wall_friction_per_length(m - g * r) + 8.0 / 9.0 * wall_friction_per_length(m) +
                             5.0 / 9.0 * wall_friction_per_length(m + g * r));
             }
