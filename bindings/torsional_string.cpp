@@ -194,7 +194,6 @@ py::dict extras_of(const BoundTorsionalString& r) {
 }
 
 BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
-    require_constructed(string);
     if (!py::isinstance<DrillString>(string))
         throw py::type_error(std::string(name) + ": string must be a DrillString (got " + type_name(string) + ")");
     TorsionalStringParams p{};
@@ -217,7 +216,6 @@ BoundTorsionalString make(py::handle string, const py::kwargs& kwargs) {
     if (given("contact_radius")) radius = reals_from(kwargs["contact_radius"], "contact_radius");
     if (given("bit")) {
         const py::handle b = kwargs["bit"];
-        require_constructed(b);
         if (!py::isinstance<NavarroLopezBit>(b))
             throw py::type_error(std::string(name) + ": bit must be a NavarroLopezBit or None (got " + type_name(b) +
                                  ")");
