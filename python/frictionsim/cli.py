@@ -187,37 +187,54 @@ def _ignore_interrupts() -> None:
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
 
 
-@contextmanager
-def _workers_ignoring_sigint(context) -> Iterator[None]:
-    """Processes ``context`` (spawn) starts within the block begin with SIGINT ignored: they are started through a
-    two-line /bin/sh wrapper, ``trap '' INT`` then exec of the interpreter (an ignored signal stays ignored
-    through exec, and Python keeps it ignored), so a terminal's Ctrl-C, sent to the whole process group, reaches
-    none of them while they import, before any initializer could run; this process keeps its own handler and
-    loses nothing. Left: a signal within the millisecond between a worker's start and its wrapper's trap ends
-    that worker (quietly; the pool replaces it, and this process, interrupted too, ends the pool). Without
-    /bin/sh (Windows), or where the wrapper cannot run (a noexec temporary folder), they start as before."""
+_SIGINT_WRAPPER: List[Optional[str]] = []  # the wrapper made once per process ([None]: none usable here)
+
+
+def _sigint_ignoring_wrapper() -> Optional[str]:
+    """The path of a two-line /bin/sh wrapper, ``trap '' INT`` then exec of this interpreter, made once per process
+    and removed when it exits: a worker's shell opens the script some time after its start (long after it under
+    load), so the file must outlive the block that starts the pool (removed at its end, a slow worker once found
+    nothing to run). None without /bin/sh (Windows) or where it cannot run (a noexec temporary folder)."""
+    import atexit
     import multiprocessing.spawn as spawn
     import subprocess
 
-    shell = "/bin/sh"
-    if os.name != "posix" or not os.access(shell, os.X_OK):
-        yield
-        return
-    folder = Path(tempfile.mkdtemp(prefix="frictionsim-worker."))
-    wrapper, previous = folder / "python", spawn.get_executable()
-    try:
-        wrapper.write_text(f"#!{shell}\ntrap '' INT\nexec {shlex.quote(os.fsdecode(previous))} \"$@\"\n", encoding="utf-8")
+    if _SIGINT_WRAPPER:
+        return _SIGINT_WRAPPER[0]
+    shell, path = "/bin/sh", None
+    if os.name == "posix" and os.access(shell, os.X_OK):
+        folder = Path(tempfile.mkdtemp(prefix="frictionsim-worker."))
+        atexit.register(shutil.rmtree, folder, ignore_errors=True)
+        wrapper = folder / "python"
+        wrapper.write_text(f"#!{shell}\ntrap '' INT\nexec {shlex.quote(os.fsdecode(spawn.get_executable()))} \"$@\"\n",
+                           encoding="utf-8")
         wrapper.chmod(0o700)
         try:
-            usable = subprocess.run([str(wrapper), "-S", "-c", "pass"], timeout=30, capture_output=True).returncode == 0
+            if subprocess.run([str(wrapper), "-S", "-c", "pass"], timeout=30, capture_output=True).returncode == 0:
+                path = str(wrapper)
         except (OSError, subprocess.SubprocessError):
-            usable = False
-        if usable:
-            context.set_executable(str(wrapper))
+            pass
+    _SIGINT_WRAPPER.append(path)
+    return path
+
+
+@contextmanager
+def _workers_ignoring_sigint(context) -> Iterator[None]:
+    """Processes ``context`` (spawn) starts within the block begin with SIGINT ignored: they are started through
+    _sigint_ignoring_wrapper's script (an ignored signal stays ignored through exec, and Python keeps it
+    ignored), so a terminal's Ctrl-C, sent to the whole process group, reaches none of them while they import,
+    before any initializer could run; this process keeps its own handler and loses nothing. Left: a signal
+    within the millisecond between a worker's start and its wrapper's trap ends that worker (quietly; the pool
+    replaces it, and this process, interrupted too, ends the pool). Without the wrapper they start as before."""
+    import multiprocessing.spawn as spawn
+
+    wrapper, previous = _sigint_ignoring_wrapper(), spawn.get_executable()
+    if wrapper is not None:
+        context.set_executable(wrapper)
+    try:
         yield
     finally:
         context.set_executable(previous)  # a worker started later (a replacement) starts as before
-        shutil.rmtree(folder, ignore_errors=True)
 
 
 @contextmanager

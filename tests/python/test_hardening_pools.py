@@ -139,9 +139,15 @@ def test_the_cli_starts_its_workers_with_sigint_ignored():
 
     from frictionsim.cli import _workers_ignoring_sigint
 
+    import multiprocessing.spawn as spawn
+
     context = multiprocessing.get_context("spawn")
     with _workers_ignoring_sigint(context):
+        wrapper = spawn.get_executable()
         pool = context.Pool(1)
+    # the wrapper outlives the block: a worker's shell reads it after its start, under load well after (it was
+    # removed at the block's end once, and the worker found nothing to run: "cannot open .../python")
+    assert os.access(wrapper, os.X_OK) and wrapper != spawn.get_executable()
     try:
         assert pool.apply(_sigint_handler) == int(signal.SIG_IGN)
     finally:
