@@ -1,17 +1,18 @@
 // What several convergence tests measure with: an output grid and the fitted order of an error. One definition each.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
 
 namespace frictionsim::test {
 
-/// Output times 0, dt, 2 dt, ... up to t_end (a whole number of intervals, rounded).
+/// Output times 0, dt, 2 dt, ... up to t_end (a whole number of intervals, rounded; none past t_end).
 inline std::vector<double> grid(double t_end, double dt) {
     std::vector<double> t;
     const long steps = std::lround(t_end / dt);
-    for (long k = 0; k <= steps; ++k) t.push_back(dt * static_cast<double>(k));
+    for (long k = 0; k <= steps; ++k) t.push_back(std::min(t_end, dt * static_cast<double>(k)));
     return t;
 }
 

@@ -11,8 +11,10 @@
 #include <frictionsim/solve/simulate_with.hpp>
 
 #include "catch.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::relative_error;
 
 namespace {
 
@@ -21,8 +23,6 @@ std::vector<double> multiples(double step, int count) {
     for (int k = 0; k <= count; ++k) t.push_back(k * step);
     return t;
 }
-
-double relative_error(double value, double reference) { return std::abs(value - reference) / std::abs(reference); }
 
 }  // namespace
 

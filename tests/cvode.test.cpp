@@ -12,11 +12,13 @@
 #include <vector>
 
 #include "catch.hpp"
+#include "support.hpp"
 
 using frictionsim::Cvode;
 using frictionsim::Method;
 using frictionsim::SimulationError;
 using frictionsim::SolverOptions;
+using frictionsim::test::options_for;
 
 namespace {
 
@@ -53,7 +55,7 @@ static_assert(!frictionsim::has_dense_jacobian_v<Oscillator>);
 static_assert(frictionsim::has_dense_jacobian_v<OscillatorWithJacobian>);
 
 /// x' = +1 in mode 0, -1 in mode 1. Guard 0: x - 0.5 (rising only); guard 1: x - 0.25 (falling only).
-struct Ramp {
+struct TwoGuardRamp {
     static constexpr std::size_t state_size = 1;
     static constexpr std::size_t guard_count = 2;
     void rhs(double, const double*, int mode, double* dxdt) const { dxdt[0] = mode == 0 ? 1.0 : -1.0; }
@@ -95,14 +97,6 @@ struct Faulty {
     double friction_force(double, const double*, int) const { return 0.0; }
     std::array<double, 1> initial_state() const { return {1.0}; }
 };
-
-SolverOptions options_for(Method method, double rtol = 1e-10, double atol = 1e-12) {
-    SolverOptions o;
-    o.method = method;
-    o.rtol = rtol;
-    o.atol = atol;
-    return o;
-}
 
 /// Integrates to t_end; returns the largest |x0 - cos t| over output times every 0.05, via interpolate().
 template <class Integrator>
@@ -254,8 +248,8 @@ TEST_CASE("Cvode is movable: CVODE keeps reaching the callbacks", "[cvode]") {
 TEST_CASE("Cvode finds a guard root in its direction and never steps past t_stop", "[cvode]") {
     for (Method method : {Method::cvode_bdf, Method::cvode_adams}) {
         INFO(frictionsim::method_name(method));
-        const Ramp system;
-        Cvode<Ramp> integrator(system, options_for(method, 1e-8, 1e-10));
+        const TwoGuardRamp system;
+        Cvode<TwoGuardRamp> integrator(system, options_for(method, 1e-8, 1e-10));
         const double x0 = 0.0;
         integrator.restart(0.0, &x0, 0);
 

@@ -7,12 +7,12 @@
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::relative_error;
 
 namespace {
-
-double relative_error(double value, double reference) { return std::abs(value - reference) / std::abs(reference); }
 
 /// Composite 5-point Gauss-Legendre quadrature of f over [a, b].
 template <class F>

@@ -10,8 +10,10 @@
 
 #include "catch.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::first_root;
 
 namespace {
 
@@ -33,16 +35,6 @@ double lowest_frequency(const std::vector<double>& stiffness, std::vector<double
     }
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(K, M);
     return std::sqrt(solver.eigenvalues()(0));
-}
-
-/// First root of x tan(x) = ratio in (0, pi/2), by bisection.
-double first_root(double ratio) {
-    double lo = 0.0, hi = pi / 2.0;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (mid * std::tan(mid) < ratio ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
 }
 
 }  // namespace

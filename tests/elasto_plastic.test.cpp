@@ -7,8 +7,10 @@
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::tight;
 
 namespace {
 /// Canudas de Wit 1995's LuGre values (Fc = 1 N, Fs = 1.5 N at N = 1 N, sigma0 = 1e5 N/m): z_max >= 1e-5 m.
@@ -19,14 +21,6 @@ ElastoPlastic::Params reference_params(double breakaway_fraction = 0.5) {
     return p;
 }
 
-SolverOptions tight(Method method, std::vector<double> output_times) {
-    SolverOptions o;
-    o.method = method;
-    o.rtol = 1e-10;
-    o.atol = 1e-15;
-    o.output_times = std::move(output_times);
-    return o;
-}
 }  // namespace
 
 TEST_CASE("elasto-plastic alpha(z): 0 below break-away and when unloading, 1/2 mid-way, 1 from z_max = Fc / sigma0",

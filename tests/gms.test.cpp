@@ -13,10 +13,14 @@
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
-#include "rig_checks.hpp"
 #include "rejection.hpp"
+#include "rig_checks.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::KnotPath;
+using frictionsim::test::tight;
+using frictionsim::test::um;
 using GMS = GeneralizedMaxwellSlip;
 
 namespace {
@@ -25,41 +29,13 @@ namespace {
 // alpha = 0.1, 0.2, 0.3, 0.4. At F_N = 10 N the shares at rest are 0.4, 0.8, 1.2, 1.6 N and the break-away
 // deflections alpha_i F_s / k_i 5, 20, 60 and 160 um; the lag time s/C is ~0.9 ms.
 constexpr double normal = 10.0;
-constexpr double um = 1e-6;
 
-GMS::Params params(double block_damping = 0.0, double viscous_damping = 0.0) {
+GMS::Params gms_params(double block_damping = 0.0, double viscous_damping = 0.0) {
     GMS::Params p;
     p.block_damping = block_damping;
     p.viscous_damping = viscous_damping;
     return p;
 }
-
-SolverOptions tight(Method method, std::vector<double> output_times) {
-    SolverOptions o;
-    o.method = method;
-    o.rtol = 1e-10;
-    o.atol = 1e-15;
-    o.output_times = std::move(output_times);
-    return o;
-}
-
-/// A displacement through knots x_k at t = k T, half a cosine per segment: v = 0 at every knot (a reversal where
-/// the direction changes), and the velocity is smooth in between.
-struct KnotPath {
-    std::vector<double> x;
-    double T;
-    std::size_t segment(double t) const {
-        return std::min<std::size_t>(static_cast<std::size_t>(std::max(0.0, t) / T), x.size() - 2);
-    }
-    double operator()(double t) const {
-        const std::size_t k = segment(t);
-        return (x[k + 1] - x[k]) * pi / (2 * T) * std::sin(pi * (t - k * T) / T);
-    }
-    double displacement(double t) const {
-        const std::size_t k = segment(t);
-        return x[k] + (x[k + 1] - x[k]) * 0.5 * (1 - std::cos(pi * (t - k * T) / T));
-    }
-};
 
 }  // namespace
 
@@ -67,7 +43,7 @@ TEST_CASE("GMS steady sliding: F = s(v) sgn(v) + sigma_2 v (the Stribeck curve),
           "[gms][kinematic_rig]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     for (double delta : {2.0, 1.0}) {
-        GMS::Params p = params(5.0, 2.0);  // sigma_1 must drop out (dz/dt -> 0), sigma_2 v must not
+        GMS::Params p = gms_params(5.0, 2.0);  // sigma_1 must drop out (dz/dt -> 0), sigma_2 v must not
         p.shape_exponent = delta;
         const GMS law(p);
         for (double v : {-3e-3, -1e-3, 2e-4, 1e-3, 5e-3, 0.1}) {
@@ -98,7 +74,7 @@ TEST_CASE("GMS presliding: virgin slope sum k_i, Maxwell-slip forces at the reve
     const KnotPath b{{0, 100 * um, -100 * um, -20 * um, 100 * um}, 1.0};
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));
-    const GMS law(params());
+    const GMS law(gms_params());
     std::vector<double> ta, tb;
     for (int i = 0; i <= 600; ++i) ta.push_back(0.01 * i);
     for (int i = 0; i <= 400; ++i) tb.push_back(0.01 * i);
@@ -148,7 +124,7 @@ TEST_CASE("GMS frictional lag: in unidirectional sliding F is higher acceleratin
     // v = 1 mm/s - 0.8 mm/s cos(w t): through the Stribeck range, never reversing. At t = T/4 (accelerating) and
     // 3T/4 (decelerating) v = 1 mm/s. The blocks' forces relax to their shares at rate C / s, so the sum lags
     // s(v(t)) by s/C: F - s = -(s/C) ds/dt.
-    const GMS law(params());
+    const GMS law(gms_params());
     const double v_d = 1e-3, v_a = 0.8e-3, s = law.stribeck_level(v_d, normal);
     const double slope = -normal * 0.1 * 2 * (v_d / 1e-3) * std::exp(-1.0) / 1e-3;  // s'(v_d), N s/m
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
@@ -229,12 +205,12 @@ TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work - th
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));
     SECTION("axial rig, paper 000 Fig. 7(a) (v_r up to 0.53 m/s), with sigma_1 and sigma_2") {
-        check_energy_balance(AxialRig<GMS>(AxialRigParams{}, GMS(params(20.0, 5.0))), method, 0.5);
+        check_energy_balance(AxialRig<GMS>(AxialRigParams{}, GMS(gms_params(20.0, 5.0))), method, 0.5);
     }
     SECTION("kinematic rig, fast enough for the taper (|v| > C alpha_i / k_i): dissipation never decreases") {
         // sigma_1 = sigma_2 = 0: int F v dt - sum k_i z_i^2 / 2 = int sum_i k_i z_i (v - dz_i/dt) dt, which the
         // |v| / S_i bound keeps from decreasing (without it a block loaded against the motion would slip forwards)
-        const GMS law(params());
+        const GMS law(gms_params());
         const HarmonicSlidingVelocity v(0.0, 0.05, 2 * pi * 20.0);  // +-0.4 mm, |v| up to 50 mm/s
         std::vector<double> times;
         for (int i = 1; i <= 400; ++i) times.push_back(0.25e-3 * i);
@@ -261,7 +237,7 @@ TEST_CASE("GMS energy: axial rig drive work = stored energy + friction work - th
 
 TEST_CASE("GMS analytic partials = central differences, in each regime - the axial rig's Jacobian with them",
           "[gms][jacobian]") {
-    const GMS law(params(3.0, 1.5));
+    const GMS law(gms_params(3.0, 1.5));
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::array<int, 3> seen{};
@@ -372,7 +348,7 @@ TEST_CASE("GMS kink at v_r = 0 located as an event on the axial rig: both integr
           "fewer steps (not stiff)",
           "[gms][axial_rig]") {
     static_assert(check_friction_law<GMS>() && law_has_partials_v<GMS> && !declares_stiff<GMS>::value);
-    const AxialRig<GMS> rig(AxialRigParams{}, GMS(params()));
+    const AxialRig<GMS> rig(AxialRigParams{}, GMS(gms_params()));
     SolverOptions o;
     o.rtol = 1e-10;
     o.atol = 1e-13;

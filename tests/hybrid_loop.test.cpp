@@ -12,8 +12,10 @@
 #include <frictionsim/solve/adaptive_stepper.hpp>
 
 #include "catch.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::options_for;
 
 namespace {
 
@@ -96,7 +98,7 @@ struct FailsMidRun : ToyBase {
 };
 
 // x'' = -x, x(0) = 1: x = cos t. A smooth system with no guard.
-struct Oscillator : ToyBase {
+struct ToyOscillator : ToyBase {
     static constexpr std::size_t state_size = 2, guard_count = 0;
     void rhs(double, const double* x, int, double* dx) const { dx[0] = x[1]; dx[1] = -x[0]; }
     void guards(double, const double*, int, double*) const {}
@@ -185,14 +187,6 @@ private:
     State y_{}, y1_{}, ytmp_{}, k1_{}, k2_{};
     State y0_{}, f0_{}, yh_{}, fh_{};  ///< the cubic Hermite dense output's ends
 };
-
-SolverOptions options_for(Method m) {
-    SolverOptions o;
-    o.method = m;
-    o.rtol = 1e-10;
-    o.atol = 1e-12;
-    return o;
-}
 
 }  // namespace
 
@@ -367,7 +361,7 @@ TEST_CASE("Dormand-Prince: global error falls like rtol and dense output is as a
         o.rtol = rtol;
         o.atol = rtol * 1e-2;
         for (int i = 0; i <= 200; ++i) o.output_times.push_back(0.05 * i);  // mostly between steps
-        const Result r = simulate(Oscillator{}, 10.0, o);
+        const Result r = simulate(ToyOscillator{}, 10.0, o);
         double worst = 0.0;
         for (std::size_t i = 0; i < r.rows(); ++i) worst = std::max(worst, std::abs(r.state(i, 0) - std::cos(r.t[i])));
         INFO("rtol " << rtol << ": max error " << worst << ", steps " << r.stats.steps);

@@ -18,13 +18,13 @@
 
 #include "catch.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::kInf;
+using frictionsim::test::kNaN;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Every coefficient non-zero and distinct, so that a swapped or dropped term shows.
 HystereticFriction::Params distinct_params() {

@@ -16,16 +16,19 @@
 #include "catch.hpp"
 #include "rejection.hpp"
 #include "rig_checks.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::KnotPath;
+using frictionsim::test::tight;
+using frictionsim::test::um;
 
 namespace {
 
 // F_N = 10 N: F_s = 4 N, F_c = 3 N. k = 1e5 N/m, h = 0.5: the virgin curve reaches F_s at F_s / (k (1 - h)) = 80 um.
-constexpr double normal = 10.0;
-constexpr double um = 1e-6;
+constexpr double normal_load = 10.0;
 
-Leuven::Params params(double n = 2.0, double micro_damping = 0.0, double viscous_damping = 0.0) {
+Leuven::Params leuven_params(double n = 2.0, double micro_damping = 0.0, double viscous_damping = 0.0) {
     Leuven::Params p;
     p.attraction_exponent = n;
     p.micro_damping = micro_damping;
@@ -34,29 +37,7 @@ Leuven::Params params(double n = 2.0, double micro_damping = 0.0, double viscous
 }
 
 /// The virgin curve written out (not the law's): k x / (1 + h k |x| / (mu_s F_N)).
-double virgin(double x, double k = 1e5, double h = 0.5) { return k * x / (1.0 + h * k * std::abs(x) / (0.4 * normal)); }
-
-SolverOptions tight(Method method, std::vector<double> output_times) {
-    SolverOptions o;
-    o.method = method;
-    o.rtol = 1e-10;
-    o.atol = 1e-15;
-    o.output_times = std::move(output_times);
-    return o;
-}
-
-/// A displacement through knots x_k at t = k T, half a cosine per segment: v = 0 at every knot.
-struct KnotPath {
-    std::vector<double> x;
-    double T;
-    std::size_t segment(double t) const {
-        return std::min<std::size_t>(static_cast<std::size_t>(std::max(0.0, t) / T), x.size() - 2);
-    }
-    double operator()(double t) const {
-        const std::size_t k = segment(t);
-        return (x[k + 1] - x[k]) * pi / (2 * T) * std::sin(pi * (t - k * T) / T);
-    }
-};
+double virgin(double x, double k = 1e5, double h = 0.5) { return k * x / (1.0 + h * k * std::abs(x) / (0.4 * normal_load)); }
 
 std::vector<double> grid(double t_end, int n) {
     std::vector<double> t;
@@ -90,7 +71,7 @@ struct PlanarKinematic {
     static constexpr bool stiff = true;
     static constexpr double radius = 0.1;
 
-    PlanarKinematic(const Leuven& law, Motion m, double phi) : contact(law, radius, normal, 1e-3), motion(m), phi0(phi) {}
+    PlanarKinematic(const Leuven& law, Motion m, double phi) : contact(law, radius, normal_load, 1e-3), motion(m), phi0(phi) {}
 
     Contact contact;
     Motion motion;
@@ -175,16 +156,16 @@ struct CircleClosedForm {
 TEST_CASE("Leuven steady sliding: F = S(v) + sigma_2 v (the Stribeck curve) - sigma_1 drops out", "[leuven][kinematic_rig]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     for (double n : {1.0, 2.0, 4.0}) {
-        const Leuven law(params(n, 50.0, 2.0));
+        const Leuven law(leuven_params(n, 50.0, 2.0));
         for (double v : {-3e-3, -1e-3, 2e-4, 1e-3, 5e-3, 0.1}) {
             // the relaxation length S / (n dF_h/dz) is at most 80 um / n: 60 of them
             const double t_end = 60 * 80 * um / std::abs(v);
             const Result r =
-                simulate(KinematicRig(law, ConstantSignal(v), ConstantSignal(normal)), t_end, tight(method, {t_end}));
-            const double s = normal * (0.3 + 0.1 * std::exp(-std::pow(v / 1e-3, 2)));
+                simulate(KinematicRig(law, ConstantSignal(v), ConstantSignal(normal_load)), t_end, tight(method, {t_end}));
+            const double s = normal_load * (0.3 + 0.1 * std::exp(-std::pow(v / 1e-3, 2)));
             INFO(method_name(method) << ", n = " << n << ", v = " << v);
             CHECK(r.events.empty());
-            CHECK(law.stribeck_level(v, normal) == Approx(s).epsilon(1e-15));
+            CHECK(law.stribeck_level(v, normal_load) == Approx(s).epsilon(1e-15));
             CHECK(r.friction_force.back() == Approx(std::copysign(s, v) + 2.0 * v).epsilon(1e-8));
             // on the virgin curve, at the force S: z = F_vc^-1(S)
             const double z = r.state(r.rows() - 1, Leuven::presliding);
@@ -204,9 +185,9 @@ TEST_CASE("Leuven presliding: Masing transition curves from each turning point, 
     const KnotPath b{{0, 0.75 * range, -1.25 * range}, 1.0};
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));
-    const Leuven law(params(4.0));
-    const Result ra = simulate(KinematicRig(law, a, ConstantSignal(normal)), 5.0, tight(method, grid(5.0, 1000)));
-    const Result rb = simulate(KinematicRig(law, b, ConstantSignal(normal)), 2.0, tight(method, grid(2.0, 400)));
+    const Leuven law(leuven_params(4.0));
+    const Result ra = simulate(KinematicRig(law, a, ConstantSignal(normal_load)), 5.0, tight(method, grid(5.0, 1000)));
+    const Result rb = simulate(KinematicRig(law, b, ConstantSignal(normal_load)), 2.0, tight(method, grid(2.0, 400)));
     REQUIRE(ra.rows() == 1001);
     REQUIRE(rb.rows() == 401);
     CHECK(ra.events.size() == 3);  // the pass through -0.5 at t = 4 s is a standstill, no reversal
@@ -265,7 +246,7 @@ TEST_CASE("Leuven presliding: Masing transition curves from each turning point, 
 
 TEST_CASE("Leuven reduces to LuGre: linear hysteresis force (h = 0), no memory, n = 1", "[leuven][lugre][kinematic_rig]") {
     // The 2000 paper: with F_h(z) = sigma_0 z and n = 1, dz/dt = v (1 - sigma_0 z / S(v)) = v - sigma_0 |v| z / s(v).
-    Leuven::Params p = params(1.0, 316.0, 0.4);
+    Leuven::Params p = leuven_params(1.0, 316.0, 0.4);
     p.hysteresis_shape = 0.0;
     p.memory_depth = 0.0;
     LuGre::Params q;
@@ -278,9 +259,9 @@ TEST_CASE("Leuven reduces to LuGre: linear hysteresis force (h = 0), no memory, 
     // reversing sliding through the Stribeck range and presliding: v = 0.5 mm/s - 2 mm/s cos(w t)
     const HarmonicSlidingVelocity v(0.5e-3, 2e-3, 2 * pi * 5.0);
     const auto times = grid(1.0, 500);
-    const Result leuven = simulate(KinematicRig(Leuven(p), v, ConstantSignal(normal)), 1.0,
+    const Result leuven = simulate(KinematicRig(Leuven(p), v, ConstantSignal(normal_load)), 1.0,
                                    tight(Method::cvode_bdf, times));
-    const Result lugre = simulate(KinematicRig(LuGre(q), v, ConstantSignal(normal)), 1.0,
+    const Result lugre = simulate(KinematicRig(LuGre(q), v, ConstantSignal(normal_load)), 1.0,
                                   tight(Method::cvode_bdf, times));
     REQUIRE(leuven.rows() == lugre.rows());
     double gap = 0.0, peak = 0.0;
@@ -296,7 +277,7 @@ TEST_CASE("Leuven reduces to LuGre: linear hysteresis force (h = 0), no memory, 
 
     // with memory the 2002 state equation differs: each transition starts at r = 0, so F rises faster
     p.memory_depth = 8.0;
-    const Result remembering = simulate(KinematicRig(Leuven(p), v, ConstantSignal(normal)), 1.0,
+    const Result remembering = simulate(KinematicRig(Leuven(p), v, ConstantSignal(normal_load)), 1.0,
                                         tight(Method::cvode_bdf, times));
     double apart = 0.0;
     for (std::size_t i = 0; i < remembering.rows(); ++i)
@@ -307,11 +288,11 @@ TEST_CASE("Leuven reduces to LuGre: linear hysteresis force (h = 0), no memory, 
 TEST_CASE("Leuven memory is bounded: a long reversing run keeps at most memory_depth turning points, forces stay on "
           "the Stribeck level",
           "[leuven][kinematic_rig]") {
-    Leuven::Params p = params(2.0);
+    Leuven::Params p = leuven_params(2.0);
     p.memory_depth = 3.0;
     const Leuven law(p);
     const HarmonicSlidingVelocity v(0.0, 2e-2, 2 * pi * 10.0);  // +-320 um sliding back and forth, 20 reversals
-    const Result r = simulate(KinematicRig(law, v, ConstantSignal(normal)), 1.0, tight(Method::cvode_bdf, grid(1.0, 2000)));
+    const Result r = simulate(KinematicRig(law, v, ConstantSignal(normal_load)), 1.0, tight(Method::cvode_bdf, grid(1.0, 2000)));
     CHECK(r.events.size() == 20);
     double top = 0.0;
     for (std::size_t i = 0; i < r.rows(); ++i) {
@@ -327,7 +308,7 @@ TEST_CASE("Leuven on the axial rig: drive work = stored energy + friction work a
           "[leuven][axial_rig][energy]") {
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     INFO(method_name(method));
-    frictionsim::test::check_energy_balance(AxialRig<Leuven>(AxialRigParams{}, Leuven(params(2.0, 20.0, 5.0))),
+    frictionsim::test::check_energy_balance(AxialRig<Leuven>(AxialRigParams{}, Leuven(leuven_params(2.0, 20.0, 5.0))),
                                             method, 0.5);
 }
 
@@ -361,11 +342,11 @@ TEST_CASE("Leuven on a planar wall: purely axial or purely torsional sliding is 
     const auto method = GENERATE(Method::dormand_prince, Method::cvode_bdf);
     const bool torsional = GENERATE(false, true);
     INFO(method_name(method) << (torsional ? ", torsional" : ", axial"));
-    const Leuven law(params(4.0, 20.0, 3.0));
+    const Leuven law(leuven_params(4.0, 20.0, 3.0));
     SolverOptions o = tight(method, grid(5.0, 1000));
     o.rtol = 1e-12;  // what is left between the runs is the integrators' error on two state vectors
     o.atol = 1e-17;
-    const KinematicRig rig(law, a, ConstantSignal(normal));
+    const KinematicRig rig(law, a, ConstantSignal(normal_load));
     const Result line = simulate(rig, 5.0, o);
     const auto motion = [a, torsional](double t, double& v, double& w) {
         v = torsional ? 0.0 : a(t);
@@ -420,9 +401,9 @@ TEST_CASE("Leuven on a planar wall: sliding along a tilted line keeps the 1D mem
     // q = u(t) (cos 0.6, sin 0.6): both components slide, q reverses through zero (a 180 degree turn) at each knot
     const KnotPath a = inner_loop_path();
     const double alpha = 0.6;
-    const Leuven law(params(4.0));
+    const Leuven law(leuven_params(4.0));
     const Result line =
-        simulate(KinematicRig(law, a, ConstantSignal(normal)), 5.0, tight(Method::cvode_bdf, grid(5.0, 1000)));
+        simulate(KinematicRig(law, a, ConstantSignal(normal_load)), 5.0, tight(Method::cvode_bdf, grid(5.0, 1000)));
     const auto motion = [a, alpha](double t, double& v, double& w) {
         v = a(t) * std::cos(alpha);
         w = a(t) * std::sin(alpha) / 0.1;
@@ -454,8 +435,8 @@ TEST_CASE("Leuven on a planar wall: a turn past 90 degrees within a presliding l
           "form time, with the 1D memory of the projected motion - a slow turn is none",
           "[leuven][wall_contact]") {
     // V = 0.1 mm/s, l = F_s / k = 40 um: K = V / l = 2.5 rad/s (CircleClosedForm)
-    const Leuven law(params(4.0));
-    const double V = 1e-4, K = V / law.presliding_length(normal);
+    const Leuven law(leuven_params(4.0));
+    const double V = 1e-4, K = V / law.presliding_length(normal_load);
     REQUIRE(K == Approx(2.5).epsilon(1e-12));
     SECTION("W = 2 K: q turns faster than the axis follows") {
         const CircleClosedForm circle{V, 2.0 * K, K};
@@ -467,7 +448,7 @@ TEST_CASE("Leuven on a planar wall: a turn past 90 degrees within a presliding l
         const PlanarKinematic<decltype(motion)> node(law, motion, 0.0);
         const Result plane = simulate(node, t_end, tight(Method::cvode_bdf, grid(t_end, 400)));
         // the 1D law driven by the projected motion u = q . a = V cos psi, psi in closed form
-        const Result line = simulate(KinematicRig(law, circle, ConstantSignal(normal)), t_end,
+        const Result line = simulate(KinematicRig(law, circle, ConstantSignal(normal_load)), t_end,
                                      tight(Method::cvode_bdf, grid(t_end, 400)));
         REQUIRE(plane.events.size() == 1);
         REQUIRE(line.events.size() == 1);
@@ -505,7 +486,7 @@ TEST_CASE("Leuven on a planar wall: a turn past 90 degrees within a presliding l
         const double lag = W * 12.0 - plane.state(last, PlanarKinematic<decltype(motion)>::axis);
         CHECK(lag == Approx(std::asin(0.5)).epsilon(1e-6));
         // steady: F = S(u), u = V cos(lag): the Stribeck curve along the axis
-        CHECK(plane.friction_force[last] == Approx(law.stribeck_level(V * std::cos(lag), normal)).epsilon(1e-6));
+        CHECK(plane.friction_force[last] == Approx(law.stribeck_level(V * std::cos(lag), normal_load)).epsilon(1e-6));
     }
 }
 
@@ -517,8 +498,8 @@ TEST_CASE("Leuven on a planar wall: closed sliding paths take work (no energy cr
     const double V = 1e-4;
     for (double n : {1.0, 4.0}) {
         for (double sigma : {0.0, 10.0}) {
-            const Leuven law(params(n, sigma, sigma));
-            const double K = V / law.presliding_length(normal);
+            const Leuven law(leuven_params(n, sigma, sigma));
+            const double K = V / law.presliding_length(normal_load);
             for (double W : {0.5 * K, 2.0 * K, 8.0 * K}) {
                 const auto motion = [V, W](double t, double& v, double& w) {
                     v = V * std::cos(W * t);
@@ -536,9 +517,9 @@ TEST_CASE("Leuven on a planar wall: closed sliding paths take work (no energy cr
                 double peak = 0.0;  // the hysteresis force (sigma_1 dz/dt, sigma_2 u ride on it)
                 for (std::size_t i = 0; i < r.rows(); ++i) {
                     const std::array<double, Leuven::state_count> z = row(r, i);
-                    peak = std::max(peak, std::abs(law.hysteresis_force(normal, z.data(), r.mode[i])));
+                    peak = std::max(peak, std::abs(law.hysteresis_force(normal_load, z.data(), r.mode[i])));
                 }
-                CHECK(peak <= 0.4 * normal * (1 + 1e-9));
+                CHECK(peak <= 0.4 * normal_load * (1 + 1e-9));
             }
         }
     }

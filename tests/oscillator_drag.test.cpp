@@ -16,27 +16,18 @@
 #include <frictionsim/simulate.hpp>
 
 #include "catch.hpp"
+#include "drill_pipe.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::buoyed;
+using frictionsim::test::impedance;
+using frictionsim::test::pipe;
+using frictionsim::test::contains;
+using frictionsim::test::deg;
 
 namespace {
-
-constexpr double deg = pi / 180.0;
-
-bool contains_text(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-PipeSection pipe(double length) {
-    PipeSection s{};  // 5" drill pipe
-    s.length = length;
-    return s;
-}
-
-/// Buoyed weight per length [N/m].
-double buoyed(const PipeSection& s, double mud) { return standard_gravity * s.area() * (s.density - mud); }
-
-/// Z = A sqrt(E rho) [N s/m].
-double impedance(const PipeSection& s) { return s.area() * std::sqrt(s.youngs_modulus * s.density); }
 
 /// The cycle means by the midpoint rule on a fine grid of phases (independent of the library's rule and count).
 CycleMeanFriction reference_mean(double v, double a, double w, std::size_t n = 2'000'000) {
@@ -407,7 +398,7 @@ TEST_CASE("oscillator drag: bad input is refused naming it", "[oscillator][valid
     CHECK(tool_rejected({-1.0, 5e4, 18.0}) == "measured_depth");
     CHECK(tool_rejected({1000.0, 5e4, 0.0}) == "frequency");
     CHECK(tool_rejected({1000.0, std::nan(""), 18.0}) == "force_amplitude");
-    CHECK(contains_text(rejection_message([&] { (void)model.run(Operation::trip_in, p, {{3100.0, 5e4, 18.0}}); }),
+    CHECK(contains(rejection_message([&] { (void)model.run(Operation::trip_in, p, {{3100.0, 5e4, 18.0}}); }),
                         "cannot be below the bit"));
     auto params_rejected = [&](auto change) {
         OscillatorDragParams o;

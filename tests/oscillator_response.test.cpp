@@ -14,20 +14,15 @@
 #include <frictionsim/wells/oscillator_response.hpp>
 
 #include "catch.hpp"
+#include "drill_pipe.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::buoyed;
+using frictionsim::test::impedance;
+using frictionsim::test::pipe;
 
 namespace {
-
-PipeSection pipe(double length) {
-    PipeSection s{};  // 5" drill pipe
-    s.length = length;
-    return s;
-}
-
-double buoyed(const PipeSection& s, double mud) { return standard_gravity * s.area() * (s.density - mud); }
-double impedance(const PipeSection& s) { return s.area() * std::sqrt(s.youngs_modulus * s.density); }
 
 /// A straight horizontal hole from the surface: the side force is the buoyed weight, the drag mu w per metre.
 Survey horizontal(double length) { return Survey({{0.0, pi / 2.0, 0.0}, {length, pi / 2.0, 0.0}}); }

@@ -19,26 +19,19 @@
 #include <frictionsim/wells/soft_string.hpp>
 
 #include "catch.hpp"
+#include "drill_pipe.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::buoyed;
+using frictionsim::test::pipe;
+using frictionsim::test::contains;
+using frictionsim::test::deg;
 
 namespace {
 
-constexpr double deg = pi / 180.0;
 constexpr double g = standard_gravity;
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-PipeSection pipe(double length, double density = 7850.0) {
-    PipeSection s{};  // 5" drill pipe
-    s.length = length;
-    s.density = density;
-    return s;
-}
-
-/// Buoyed weight per length of a section in mud [N/m].
-double buoyed(const PipeSection& s, double mud_density) { return g * s.area() * (s.density - mud_density); }
 
 SoftStringParams open_hole(double mu) {
     SoftStringParams p;

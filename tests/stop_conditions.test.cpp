@@ -15,9 +15,8 @@ using namespace frictionsim;
 
 namespace {
 
-
 /// x'' = -x from (1, 0): x = cos t, v = -sin t; no switches.
-struct Oscillator {
+struct CosineOscillator {
     static constexpr std::size_t state_size = 2, guard_count = 0;
     void rhs(double, const double* x, int, double* dx) const {
         dx[0] = x[1];
@@ -90,7 +89,7 @@ TEST_CASE("stop conditions: a terminal level crossing ends the run where the sta
         // v = -sin t falls through -0.8 at t = asin(0.8) = 0.927 (non-terminal: logged, the run goes on), then
         // x = cos t falls through 0.5 at t = pi / 3 = 1.047 (terminal)
         o.stop_conditions = {StopCondition{"v", -0.8, -1, "", false, ""}, StopCondition{"x", 0.5, -1, "", true, ""}};
-        const Result r = simulate(Oscillator{}, 10.0, o);
+        const Result r = simulate(CosineOscillator{}, 10.0, o);
         CHECK(r.completed);
         CHECK(r.status == 1);
         CHECK(r.message.find("x = 0.5") != std::string::npos);
@@ -115,7 +114,7 @@ TEST_CASE("stop conditions: direction picks the crossings, non-terminal ones are
     // x = cos t crosses 0 at pi/2 (falling), 3 pi/2 (rising), 5 pi/2 (falling), ... up to t = 10
     o.stop_conditions = {StopCondition{"x", 0.0, +1, "", false, "rising"},
                          StopCondition{"x", 0.0, 0, "", false, "both"}};
-    const Result r = simulate(Oscillator{}, 10.0, o);
+    const Result r = simulate(CosineOscillator{}, 10.0, o);
     CHECK(r.status == 0);
     CHECK(r.t_reached == 10.0);
     std::vector<double> rising, both;
@@ -186,13 +185,13 @@ TEST_CASE("events carry the state before and after the switch - record_event_row
 TEST_CASE("stop conditions: bad conditions are refused naming the field", "[stop]") {
     SolverOptions o;
     o.stop_conditions = {StopCondition{"nope", 0.0, 0, "", true, ""}};
-    CHECK(rejected_parameter([&] { simulate(Oscillator{}, 1.0, o); }) == "stop_conditions.state");
+    CHECK(rejected_parameter([&] { simulate(CosineOscillator{}, 1.0, o); }) == "stop_conditions.state");
     o.stop_conditions = {StopCondition{"x", 0.0, 2, "", true, ""}};
-    CHECK(rejected_parameter([&] { simulate(Oscillator{}, 1.0, o); }) == "stop_conditions.direction");
+    CHECK(rejected_parameter([&] { simulate(CosineOscillator{}, 1.0, o); }) == "stop_conditions.direction");
     o.stop_conditions = {StopCondition{"x", NAN, 0, "", true, ""}};
-    CHECK(rejected_parameter([&] { simulate(Oscillator{}, 1.0, o); }) == "stop_conditions.level");
+    CHECK(rejected_parameter([&] { simulate(CosineOscillator{}, 1.0, o); }) == "stop_conditions.level");
     o.stop_conditions = {StopCondition{"x", 0.0, 0, "stick", true, ""}};
-    CHECK(rejected_parameter([&] { simulate(Oscillator{}, 1.0, o); }) == "stop_conditions");
+    CHECK(rejected_parameter([&] { simulate(CosineOscillator{}, 1.0, o); }) == "stop_conditions");
     o.stop_conditions = {StopCondition{"", 0.0, 0, "", true, ""}};
-    CHECK(rejected_parameter([&] { simulate(Oscillator{}, 1.0, o); }) == "stop_conditions");
+    CHECK(rejected_parameter([&] { simulate(CosineOscillator{}, 1.0, o); }) == "stop_conditions");
 }

@@ -12,17 +12,13 @@
 #include "frictionsim/string/string_rig.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/simulate.hpp"
+#include "drill_pipe.hpp"
 #include "rejection.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::pipe_string;
 
 namespace {
-
-DrillString pipe(double length) {
-    PipeSection s;
-    s.length = length;
-    return DrillString({s});
-}
 
 /// Vertical to 300 m, then a build at constant curvature to 60 degrees at 900 m (kappa = (pi / 3) / 600 m).
 Survey build_well() {
@@ -48,7 +44,7 @@ std::vector<double> moving_state(const Rig& rig) {
 TEST_CASE("string geometry: a straight inclined survey reproduces the straight-hole rig",
           "[string_geometry][string_rig]") {
     const double incline = 0.7;
-    const DrillString string = pipe(600.0);
+    const DrillString string = pipe_string(600.0);
     const Survey straight({{0.0, incline, 1.0}, {800.0, incline, 1.0}});
     StringRigParams p;
     p.inclination = incline;
@@ -89,7 +85,7 @@ TEST_CASE("string geometry: around an arc a weightless string presses each node 
           "[string_geometry]") {
     // steel-dense mud: no buoyed weight, the tension T = 2e5 N all along; the build's curvature kappa turns it by
     // kappa dL per element, so each node of the arc carries T kappa dL (half at the arc's ends), none above it
-    const DrillString string = pipe(900.0);
+    const DrillString string = pipe_string(900.0);
     const double tension = 2e5, kappa = (pi / 3.0) / 600.0;
     const std::size_t n = 90;  // 10 m elements: node 30 at the kick-off point
     const StringGeometry g = string_geometry(build_well(), string, n, string.sections()[0].density, tension);
@@ -107,7 +103,7 @@ TEST_CASE("string geometry: around an arc a weightless string presses each node 
 
 TEST_CASE("string geometry: with weight, the normal forces are the soft-string side forces lumped to the nodes",
           "[string_geometry]") {
-    const DrillString string = pipe(900.0);
+    const DrillString string = pipe_string(900.0);
     const Survey well = build_well();
     const double mud = 1300.0;
     const std::size_t n = 45;
@@ -130,7 +126,7 @@ TEST_CASE("string geometry: with weight, the normal forces are the soft-string s
     for (double f : g.normal_force) lumped += f;
     CHECK(lumped == Approx(total).epsilon(0.02));  // mean tension against the lower end's: first order in dL
     CHECK(g.normal_force[5] == 0.0);
-    CHECK(rejected_parameter([&] { (void)string_geometry(well, pipe(1300.0), n, mud); }) ==
+    CHECK(rejected_parameter([&] { (void)string_geometry(well, pipe_string(1300.0), n, mud); }) ==
           "survey last measured_depth");
 }
 
@@ -139,7 +135,7 @@ namespace {
 /// The string of build_well() hung from a held hook (axial), Coulomb walls with the soft-string normal forces,
 /// turned at `speed` by a prescribed surface speed, started hanging (hanging_state) and turning as a whole.
 StringRig<Coulomb> rig_in_the_build(std::size_t n, double speed) {
-    const DrillString string = pipe(900.0);
+    const DrillString string = pipe_string(900.0);
     StringRigParams p;
     p.mud_density = 1300.0;
     p.surface_speed = speed;
@@ -156,7 +152,7 @@ StringRig<Coulomb> rig_in_the_build(std::size_t n, double speed) {
 
 TEST_CASE("string rig in a surveyed build: at rest the hook carries the soft-string hook load, second order in N",
           "[string_geometry][string_rig]") {
-    const SoftString reference_string(build_well(), pipe(900.0), 900);
+    const SoftString reference_string(build_well(), pipe_string(900.0), 900);
     SoftStringParams sp;
     sp.mud_density = 1300.0;
     const double hook_load = reference_string.run(Operation::rotating_off_bottom, sp).hook_load();
@@ -199,9 +195,9 @@ TEST_CASE("string rig in a surveyed build: turning steadily, the surface torque 
     sp.mud_density = 1300.0;
     sp.open_hole_friction = 0.25;
     sp.rotary_speed = 2.0;
-    const double fine = SoftString(build_well(), pipe(900.0), 1800).run(Operation::rotating_off_bottom, sp)
+    const double fine = SoftString(build_well(), pipe_string(900.0), 1800).run(Operation::rotating_off_bottom, sp)
                             .surface_torque();
-    const double coarse = SoftString(build_well(), pipe(900.0), 900).run(Operation::rotating_off_bottom, sp)
+    const double coarse = SoftString(build_well(), pipe_string(900.0), 900).run(Operation::rotating_off_bottom, sp)
                               .surface_torque();
     CHECK(fine == Approx(coarse).epsilon(1e-5));
     for (std::size_t n : {15, 30, 60}) {

@@ -14,36 +14,25 @@
 #include <vector>
 
 #include "catch.hpp"
-#include "frictionsim/string/string_rig.hpp"
-#include "frictionsim/string/string_rig_params.hpp"
+#include "convergence.hpp"
+#include "drill_pipe.hpp"
 #include "frictionsim/friction/coulomb.hpp"
 #include "frictionsim/friction/dahl.hpp"
 #include "frictionsim/friction/leuven.hpp"
 #include "frictionsim/friction/lugre.hpp"
 #include "frictionsim/friction/stribeck.hpp"
 #include "frictionsim/simulate.hpp"
+#include "frictionsim/string/string_rig.hpp"
+#include "frictionsim/string/string_rig_params.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::first_root;
+using frictionsim::test::grid;
+using frictionsim::test::pipe_string;
 
 namespace {
-
-/// 5" drill pipe of length L.
-DrillString pipe_string(double length) {
-    PipeSection s;
-    s.length = length;
-    return DrillString({s});
-}
-
-/// First root of x tan(x) = ratio in (0, pi/2), by bisection.
-double first_root(double ratio) {
-    double lo = 0.0, hi = pi / 2.0;
-    for (int i = 0; i < 200; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (mid * std::tan(mid) < ratio ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
 
 /// Times at which column c of r crosses `level` upwards, by linear interpolation between rows.
 std::vector<double> upward_crossings(const Result& r, std::size_t c, double level) {
@@ -53,13 +42,6 @@ std::vector<double> upward_crossings(const Result& r, std::size_t c, double leve
         if (a < 0.0 && b >= 0.0) out.push_back(r.t[row - 1] + (r.t[row] - r.t[row - 1]) * (-a) / (b - a));
     }
     return out;
-}
-
-std::vector<double> grid(double t_end, double dt) {
-    std::vector<double> t;
-    const auto steps = static_cast<std::size_t>(std::llround(t_end / dt));
-    for (std::size_t k = 0; k <= steps; ++k) t.push_back(std::min(t_end, dt * static_cast<double>(k)));
-    return t;
 }
 
 /// A stick-slip case: 1000 m of pipe and a BHA in a 60 degree hole, Coulomb walls (mu 0.2, mu_s 0.3) at every

@@ -12,14 +12,13 @@
 
 #include "catch.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::contains;
+using frictionsim::test::deg;
 
 namespace {
-
-constexpr double deg = pi / 180.0;
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 /// A vertical hole to `kickoff`, then a build of radius R at azimuth A: the closed form of the arc.
 struct Build {

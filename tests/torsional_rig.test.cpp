@@ -15,15 +15,14 @@
 
 #include "catch.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::contains;
+using frictionsim::test::kInf;
+using frictionsim::test::kNaN;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 const double* row(const Result& r, std::size_t i) { return &r.states[i * r.state_count()]; }
 

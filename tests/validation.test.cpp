@@ -30,20 +30,19 @@
 
 #include "catch.hpp"
 #include "rejection.hpp"
+#include "support.hpp"
 
 using namespace frictionsim;
+using frictionsim::test::contains;
+using frictionsim::test::kInf;
+using frictionsim::test::kNaN;
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // The bad values of each kind of rule.
 const std::vector<double> not_positive{-1.0, -1e-300, -0.0, 0.0, kNaN, kInf, -kInf};  // must be > 0 and finite
 const std::vector<double> negative_or_nonfinite{-1.0, -1e-300, kNaN, kInf, -kInf};    // must be >= 0 and finite
 const std::vector<double> non_finite{kNaN, kInf, -kInf};                              // must be finite
-
-bool contains(const char* text, const std::string& part) { return std::string(text).find(part) != std::string::npos; }
 
 /// `call()` must throw InvalidParameter naming `name` (parameter() == name, what() mentions it).
 const auto expect_invalid = [](const std::string& name, auto&& call) {
