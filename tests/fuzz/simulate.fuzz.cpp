@@ -11,18 +11,15 @@
 // "completed" run with NaN) aborts, so libFuzzer reports it.
 //
 // This file reads the first byte and hands the input to its case (fuzz_input.hpp); the cases are compiled in
-// parts (cases.fuzz.cpp, one object per part). Built two ways: with clang's libFuzzer (scripts/fuzz), and as a
-// plain program that replays files given on the command line (FRICTIONSIM_FUZZ_REPLAY; scripts/check runs the seed
-// corpus under ASan + UBSan).
+// parts (cases.fuzz.cpp, one object per part). Built two ways: with clang's libFuzzer (scripts/fuzz), and into the
+// Catch2 suite (FRICTIONSIM_BUILD_FUZZERS), where corpus.test.cpp replays the seed corpus through the entry point
+// (scripts/check runs it under ASan + UBSan).
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
-#include <fstream>
-#include <iterator>
 #include <utility>
-#include <vector>
 
 #include "fuzz_input.hpp"
 
@@ -58,15 +55,3 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     return 0;
 }
-
-#ifdef FRICTIONSIM_FUZZ_REPLAY
-int main(int argc, char** argv) {
-    for (int i = 1; i < argc; ++i) {
-        std::ifstream file(argv[i], std::ios::binary);
-        const std::vector<char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
-        LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-    }
-    std::printf("replayed %d input(s): no defect\n", argc - 1);
-    return 0;
-}
-#endif
