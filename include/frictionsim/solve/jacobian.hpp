@@ -13,6 +13,11 @@
 //   std::vector<std::pair<std::size_t, std::size_t>> jacobian_pattern() const;
 //        every (row, col) jacobian_entries may ever write, in any mode: the sparsity KLU analyses once. Without
 //        it the sparse pattern is the full band.
+//   std::size_t quadrature_offset() const;
+//        the rows from this one to the last are quadratures (a string's work integrals): their derivatives read the
+//        other states, no derivative reads them, and the Jacobian leaves their rows out (they read every node, far
+//        outside a band). CVODE's Newton iteration converges without those rows; RODAS4 adds their product with
+//        its stages by a directional difference, which its order needs (eigen/rosenbrock.hpp).
 #pragma once
 
 #include <algorithm>
@@ -43,12 +48,14 @@ template <class S> using jacobian_entries_t = decltype(std::declval<const S&>().
     0.0, std::declval<const double*>(), std::declval<const system_mode_t<S>&>(), std::declval<JacobianEntrySink&>()));
 template <class S> using bandwidths_t = decltype(Bandwidths{std::declval<const S&>().jacobian_bandwidths()});
 template <class S> using pattern_t = decltype(std::declval<const S&>().jacobian_pattern().size());
+template <class S> using quadrature_offset_t = decltype(std::size_t{std::declval<const S&>().quadrature_offset()});
 }  // namespace detail
 
 template <class S> constexpr bool has_dense_jacobian_v = detail::detected<S, detail::dense_jacobian_t>::value;
 template <class S> constexpr bool has_jacobian_entries_v = detail::detected<S, detail::jacobian_entries_t>::value;
 template <class S> constexpr bool declares_bandwidths_v = detail::detected<S, detail::bandwidths_t>::value;
 template <class S> constexpr bool declares_pattern_v = detail::detected<S, detail::pattern_t>::value;
+template <class S> constexpr bool has_quadrature_rows_v = detail::detected<S, detail::quadrature_offset_t>::value;
 
 /// The system's declared bandwidths, or the full matrix's (n - 1, n - 1).
 template <class S>

@@ -34,7 +34,8 @@
 //                                               + wall_friction_work + damping_work + bit_work
 // (damping_work: the elements' dampers' and k_t's).
 // The work integrals do not feed back, and their rows (which read every node) are left out of the analytic
-// Jacobian: they enter the Newton iteration linearly and converge with the other states.
+// Jacobian: they are the system's quadrature rows (quadrature_offset(), solve/jacobian.hpp), which enter CVODE's
+// Newton iteration linearly and which RODAS4 applies by a directional difference.
 // Modes (ContactModes): one per wall contact, then the bit's, then the top drive's when it has switching
 // functions (PiTopDrive: -2 .. 2, see top_drive.hpp). The Result's mode column counts the stuck wall contacts; events name the node.
 #pragma once
@@ -210,6 +211,8 @@ public:
     std::size_t law_state(std::size_t node) const { return drive_states_ + node * block_ + (axial_ ? 4 : 2); }
     std::size_t bit_state() const { return drive_states_ + (setup_.elements + 1) * block_; }
     std::size_t work_offset() const { return bit_state() + ZB; }
+    /// The work integrals are the quadrature rows (solve/jacobian.hpp): no derivative reads them.
+    std::size_t quadrature_offset() const { return work_offset(); }
     /// The PI integral's index (PiTopDrive's one state, SampledPiTopDrive's first, the default drive's first).
     static constexpr std::size_t speed_error_integral = 0;
 
